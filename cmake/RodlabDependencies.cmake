@@ -1,0 +1,53 @@
+# Every third-party dependency of rodlab, each found quietly; a missing one stops configure
+# with the Debian package that provides it. scripts/bootstrap.sh installs all of them.
+
+function(rodlab_require_found found what debian_package)
+  if(NOT ${found})
+    message(FATAL_ERROR
+      "rodlab: ${what} was not found.\n"
+      "Install the Debian package '${debian_package}':\n"
+      "    apt-get install ${debian_package}\n"
+      "or run scripts/bootstrap.sh (what `make test` does), which installs every missing package.")
+  endif()
+endfunction()
+
+find_package(Eigen3 3.4 QUIET NO_MODULE)
+rodlab_require_found(Eigen3_FOUND "Eigen 3.4 (linear algebra)" libeigen3-dev)
+
+find_package(yaml-cpp QUIET)
+rodlab_require_found(yaml-cpp_FOUND "yaml-cpp (scene files)" libyaml-cpp-dev)
+
+find_package(nlohmann_json 3.10 QUIET)
+rodlab_require_found(nlohmann_json_FOUND "nlohmann-json (result files)" nlohmann-json3-dev)
+
+find_package(GSL QUIET)
+rodlab_require_found(GSL_FOUND "GSL (special functions, quadrature)" libgsl-dev)
+
+find_package(SUNDIALS 6 QUIET)
+rodlab_require_found(SUNDIALS_FOUND "SUNDIALS 6 (KINSOL, IDA)" libsundials-dev)
+if(NOT TARGET SUNDIALS::sunlinsolklu_shared)
+  rodlab_require_found(FALSE "SUNDIALS built with KLU (SUNLinSol_KLU)" libsundials-dev)
+endif()
+
+find_path(KLU_INCLUDE_DIR klu.h PATH_SUFFIXES suitesparse)
+find_library(KLU_LIBRARY klu)
+if(KLU_INCLUDE_DIR AND KLU_LIBRARY)
+  set(KLU_FOUND TRUE)
+endif()
+rodlab_require_found(KLU_FOUND "SuiteSparse KLU (sparse Jacobians)" libsuitesparse-dev)
+if(NOT TARGET rodlab::klu)
+  add_library(rodlab::klu INTERFACE IMPORTED)
+  target_include_directories(rodlab::klu INTERFACE ${KLU_INCLUDE_DIR})
+  target_link_libraries(rodlab::klu INTERFACE ${KLU_LIBRARY})
+endif()
+
+find_package(Threads REQUIRED)
+
+if(RODLAB_BUILD_TESTS)
+  find_package(Boost 1.74 QUIET COMPONENTS unit_test_framework)
+  rodlab_require_found(Boost_FOUND "Boost.Test (unit tests)" libboost-test-dev)
+endif()
+if(RODLAB_BUILD_BENCH)
+  find_package(benchmark QUIET)
+  rodlab_require_found(benchmark_FOUND "Google Benchmark" libbenchmark-dev)
+endif()

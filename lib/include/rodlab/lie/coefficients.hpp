@@ -1,0 +1,177 @@
+#pragma once
+// Scalar coefficient functions of the rotation angle theta = |omega| used by exp, log, dexp and
+// dexp^-1 on SO(3) and SE(3) (thesis (2.72)-(2.77), corrected; see docs/conventions.md).
+//
+//   a(t)  = sin t / t                               (2.74)
+//   b(t)  = (1 - cos t) / t^2                       (2.75)
+//   c(t)  = (1 - a(t)) / t^2 = (t - sin t) / t^3    (2.76)
+//   d1(t) = (a - 2 b) / t^2 = b'(t) / t             (2.77, first coefficient of Q)
+//   d2(t) = (b - 3 c) / t^2 = c'(t) / t             (2.77, second coefficient of Q)
+//   e(t)  = (1 - (t/2) cot(t/2)) / t^2              (dexp^-1 on SO(3))
+//   f(t)  = e'(t) / t                               (dexp^-1 on SE(3))
+//
+// a and b have no cancellation (b = sinc(t/2)^2 / 2), so they are evaluated directly for every
+// t > 0 (a Taylor branch only guards t -> 0). c, d1, d2, e and f cancel catastrophically as
+// t -> 0: below a switch point they are evaluated from their Taylor series in t^2 with enough
+// terms that the truncation error at the switch point is below half an ulp, and the switch
+// point is placed high enough that the closed form above it has lost at most a few ulps.
+// So neither branch has an accuracy dip at the switch (unlike a low-order series switched at
+// eps^(1/(degree+1)), which trades one error against the other). The series coefficients
+// are generated from their closed forms below, not typed in.
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+namespace rodlab::lie::coefficients {
+
+namespace detail {
+
+constexpr double factorial(int n) {
+  double r = 1.0;
+  for (int i = 2; i <= n; ++i) r *= i;
+  return r;
+}
+
+// Bernoulli numbers scaled by k!: beta_k = B_k / k!, the Taylor coefficients of x / (e^x - 1)
+// (with B_1 = -1/2). Recurrence: sum_{j=0}^{m} beta_j / (m + 1 - j)! = 0 for m >= 1.
+template <std::size_t N>
+constexpr std::array<double, N> bernoulli_over_factorial() {
+  std::array<double, N> beta{};
+  beta[0] = 1.0;
+  for (std::size_t m = 1; m < N; ++m) {
+    double s = 0.0;
+    for (std::size_t j = 0; j < m; ++j) s += beta[j] / factorial(static_cast<int>(m + 1 - j));
+    beta[m] = -s;
+  }
+  // Odd Bernoulli numbers beyond B_1 vanish; clear the rounding residue of the recurrence.
+  for (std::size_t m = 3; m < N; m += 2) beta[m] = 0.0;
+  return beta;
+}
+
+// Horner evaluation of sum_k coef[k] * x^k.
+template <std::size_t N>
+constexpr double horner(const std::array<double, N>& coef, double x) {
+  double r = coef[N - 1];
+  for (std::size_t k = N - 1; k-- > 0;) r = r * x + coef[k];
+  return r;
+}
+
+template <std::size_t N>
+constexpr std::array<double, N> series_c() {  // (-1)^k / (2k+3)!
+  std::array<double, N> s{};
+  for (std::size_t k = 0; k < N; ++k) s[k] = (k % 2 ? -1.0 : 1.0) / factorial(2 * static_cast<int>(k) + 3);
+  return s;
+}
+template <std::size_t N>
+constexpr std::array<double, N> series_d1() {  // (-1)^(m+1) (2m+2) / (2m+4)!
+  std::array<double, N> s{};
+  for (std::size_t m = 0; m < N; ++m)
+    s[m] = (m % 2 ? 1.0 : -1.0) * (2.0 * m + 2.0) / factorial(2 * static_cast<int>(m) + 4);
+  return s;
+}
+template <std::size_t N>
+constexpr std::array<double, N> series_d2() {  // (-1)^(m+1) (2m+2) / (2m+5)!
+  std::array<double, N> s{};
+  for (std::size_t m = 0; m < N; ++m)
+    s[m] = (m % 2 ? 1.0 : -1.0) * (2.0 * m + 2.0) / factorial(2 * static_cast<int>(m) + 5);
+  return s;
+}
+// (t/2) cot(t/2) = sum_n (-1)^n B_2n t^2n / (2n)!, so
+// e(t) = sum_{m>=0} (-1)^m B_(2m+2) t^2m / (2m+2)!  (= 1/12 + t^2/720 + ...).
+template <std::size_t N>
+constexpr std::array<double, N> series_e() {
+  constexpr auto beta = bernoulli_over_factorial<2 * N + 4>();
+  std::array<double, N> s{};
+  for (std::size_t m = 0; m < N; ++m) s[m] = (m % 2 ? -1.0 : 1.0) * beta[2 * m + 2];
+  return s;
+}
+// f = e'/t: term-by-term derivative of e's series, f_k = 2 (k+1) e_(k+1).
+template <std::size_t N>
+constexpr std::array<double, N> series_f() {
+  constexpr auto e = series_e<N + 1>();
+  std::array<double, N> s{};
+  for (std::size_t k = 0; k < N; ++k) s[k] = 2.0 * (k + 1.0) * e[k + 1];
+  return s;
+}
+
+}  // namespace detail
+
+/// Switch points: below them the Taylor branch is used. Exposed so tests can sample
+/// theta = switch * (1 +/- 1e-3).
+inline constexpr double kSincSwitch = 1e-3;    // sin t / t: 1 - t^2/6 + t^4/120 exact below
+inline constexpr double kCSwitch = 1.0;        // c(t): 12 terms, truncation < 1e-25 at t = 1
+inline constexpr double kDSwitch = 2.0;        // d1, d2: 14 terms, truncation < 1e-20 at t = 2
+inline constexpr double kESwitch = 2.0;        // e(t): 22 terms (ratio (t/2pi)^2 = 0.1 at t = 2)
+inline constexpr double kFSwitch = 2.5;        // f(t): 30 terms
+inline constexpr std::array<double, 5> kSwitchPoints{kSincSwitch, kCSwitch, kDSwitch, kESwitch,
+                                                     kFSwitch};
+
+/// sin(t)/t, accurate for every t (direct division has no cancellation for t > 0).
+inline double sinc(double t) {
+  if (std::abs(t) < kSincSwitch) {
+    const double t2 = t * t;
+    return 1.0 - t2 / 6.0 * (1.0 - t2 / 20.0);
+  }
+  return std::sin(t) / t;
+}
+
+inline double a(double t) { return sinc(t); }
+
+/// (1 - cos t)/t^2 = sinc(t/2)^2 / 2: cancellation-free for every t.
+inline double b(double t) {
+  const double s = sinc(0.5 * t);
+  return 0.5 * s * s;
+}
+
+inline double c(double t) {
+  static constexpr auto coef = detail::series_c<12>();
+  if (std::abs(t) < kCSwitch) return detail::horner(coef, t * t);
+  return (t - std::sin(t)) / (t * t * t);
+}
+
+inline double d1(double t) {
+  static constexpr auto coef = detail::series_d1<14>();
+  if (std::abs(t) < kDSwitch) return detail::horner(coef, t * t);
+  const double t2 = t * t;
+  return (a(t) - 2.0 * b(t)) / t2;
+}
+
+inline double d2(double t) {
+  static constexpr auto coef = detail::series_d2<14>();
+  if (std::abs(t) < kDSwitch) return detail::horner(coef, t * t);
+  const double t2 = t * t;
+  return (b(t) - 3.0 * c(t)) / t2;
+}
+
+/// (1 - (t/2) cot(t/2)) / t^2; pole at t = 2 pi (the end of the injectivity domain).
+inline double e(double t) {
+  static constexpr auto coef = detail::series_e<22>();
+  if (std::abs(t) < kESwitch) return detail::horner(coef, t * t);
+  const double h = 0.5 * t;
+  return (1.0 - h * std::cos(h) / std::sin(h)) / (t * t);
+}
+
+/// e'(t)/t. With u = t/2 and h(t) = 1 - u cot u: h' = (u / sin^2 u - cot u) / 2,
+/// e' = h'/t^2 - 2 h/t^3, so f = h'/t^3 - 2 h/t^4.
+inline double f(double t) {
+  static constexpr auto coef = detail::series_f<30>();
+  if (std::abs(t) < kFSwitch) return detail::horner(coef, t * t);
+  const double u = 0.5 * t;
+  const double su = std::sin(u), cu = std::cos(u);
+  const double h = 1.0 - u * cu / su;
+  const double hp = 0.5 * (u / (su * su) - cu / su);
+  const double t2 = t * t;
+  return (hp * t - 2.0 * h) / (t2 * t2);
+}
+
+/// B_k / k! for k = 0..kMaxSeriesOrder (B_1 = -1/2): the coefficients of dexp^-1's series.
+inline constexpr int kMaxSeriesOrder = 40;
+inline constexpr auto kBernoulliOverFactorial = detail::bernoulli_over_factorial<kMaxSeriesOrder + 1>();
+/// 1 / (k+1)! for k = 0..kMaxSeriesOrder: the coefficients of dexp's series.
+inline constexpr auto kInverseFactorialShifted = [] {
+  std::array<double, kMaxSeriesOrder + 1> s{};
+  for (int k = 0; k <= kMaxSeriesOrder; ++k) s[k] = 1.0 / detail::factorial(k + 1);
+  return s;
+}();
+
+}  // namespace rodlab::lie::coefficients

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs the Debian packages rodlab needs that are missing (and only those), then
+# configures and builds rodlab in Release under build/. Idempotent: a second run installs
+# nothing and rebuilds only what changed. Used by `make test`, `make validate`, `make bench`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  cmake make g++ pkg-config        # toolchain
+  libeigen3-dev                    # linear algebra
+  libsundials-dev                  # KINSOL, IDA (built with KLU)
+  libsuitesparse-dev               # KLU sparse LU
+  libgsl-dev                       # special functions, quadrature
+  libboost-test-dev                # unit tests
+  libyaml-cpp-dev                  # scene files
+  libbenchmark-dev                 # benchmarks
+  nlohmann-json3-dev               # result files
+)
+
+missing=()
+if command -v dpkg-query >/dev/null 2>&1; then
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+  done
+else
+  echo "bootstrap: dpkg-query not found (not Debian?); skipping package installation." >&2
+fi
+
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "bootstrap: installing missing Debian packages: ${missing[*]}"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+build_dir=${RODLAB_BUILD_DIR:-build}
+werror=OFF
+if [ "${CI:-}" = "true" ]; then werror=ON; fi
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DRODLAB_WERROR=$werror >/dev/null
+cmake --build "$build_dir" -j "$(nproc)"
