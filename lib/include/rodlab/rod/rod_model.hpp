@@ -1,0 +1,60 @@
+#pragma once
+// The immutable rod model (Pinocchio's Model/Data split: algorithms take a const RodModel&).
+//   K = diag(E Ix, E Iy, G Jt, G A, G A, E A)          (2.28)
+//   M = rho diag(Ix, Iy, J, A, A, A)                   (3.5)
+//   V = alpha diag(3 Ix, 3 Iy, J, A, A, 3 A)           (3.10), Trouton ratio 3 for extension
+// with the reference twist xi* (constant along s; straight rod: [0 0 0 0 0 1]).
+// model kirchhoff holds nu = nu* (3.45): only the angular strains are free.
+#include <Eigen/Core>
+
+#include "rodlab/lie/se3.hpp"
+#include "rodlab/rod/material.hpp"
+#include "rodlab/rod/section.hpp"
+
+namespace rodlab::rod {
+
+using lie::Matrix6;
+using lie::Vector6;
+
+enum class ModelKind { cosserat, kirchhoff };
+
+class RodModel {
+ public:
+  /// Throws std::invalid_argument for a non-positive length or modulus, a bad section, or
+  /// a reference twist whose linear part is zero (no centreline).
+  RodModel(double length, const Section& section, const Material& material,
+           ModelKind kind = ModelKind::cosserat,
+           const Vector6& reference_twist = straight_twist());
+
+  static Vector6 straight_twist() { return (Vector6() << 0, 0, 0, 0, 0, 1).finished(); }
+
+  double length() const { return length_; }
+  const Section& section() const { return section_; }
+  const Material& material() const { return material_; }
+  ModelKind kind() const { return kind_; }
+  bool is_kirchhoff() const { return kind_ == ModelKind::kirchhoff; }
+  const SectionProperties& properties() const { return props_; }
+  const Vector6& xi_star() const { return xi_star_; }
+
+  /// Diagonals of K, M, V, and of K^-1.
+  const Vector6& K_diag() const { return K_; }
+  const Vector6& M_diag() const { return M_; }
+  const Vector6& V_diag() const { return V_; }
+  const Vector6& K_inv_diag() const { return K_inv_; }
+  Matrix6 K() const { return K_.asDiagonal(); }
+  Matrix6 M() const { return M_.asDiagonal(); }
+  Matrix6 V() const { return V_.asDiagonal(); }
+
+  /// Mass per unit length rho A.
+  double mass_per_length() const { return material_.rho * props_.A; }
+
+ private:
+  double length_;
+  Section section_;
+  Material material_;
+  ModelKind kind_;
+  SectionProperties props_;
+  Vector6 xi_star_, K_, M_, V_, K_inv_;
+};
+
+}  // namespace rodlab::rod

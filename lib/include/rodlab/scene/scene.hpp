@@ -1,0 +1,157 @@
+#pragma once
+// A scene (schema rodlab.scene/1, docs/scene-reference.md) as typed structs whose field names
+// match the YAML keys. Loading and checking live in rodlab/io/scene_loader.hpp.
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rodlab/lie/se3.hpp"
+#include "rodlab/rod/material.hpp"
+#include "rodlab/rod/rod_model.hpp"
+#include "rodlab/rod/section.hpp"
+#include "rodlab/scene/schedule.hpp"
+
+namespace rodlab::scene {
+
+using Vector2 = Eigen::Vector2d;
+using Vector3 = Eigen::Vector3d;
+using Vector6 = lie::Vector6;
+
+inline constexpr const char* kSceneSchema = "rodlab.scene/1";
+
+enum class Frame { body, world };
+enum class Initial { straight, static_equilibrium };  // YAML: straight | static
+
+struct Rod {
+  rod::ModelKind model = rod::ModelKind::cosserat;
+  double length = 0.0;
+  rod::Section section;
+  rod::Material material;
+  Vector6 reference_twist = rod::RodModel::straight_twist();
+
+  rod::RodModel to_model() const { return {length, section, material, model, reference_twist}; }
+};
+
+struct Base {
+  lie::SE3 pose;
+};
+
+struct Wrench {
+  VectorSchedule moment{Vector3::Zero()};
+  VectorSchedule force{Vector3::Zero()};
+  Frame frame = Frame::body;
+};
+
+struct FreeTip {
+  Wrench wrench;
+};
+struct ClampedTip {
+  lie::SE3 pose;
+};
+using Tip = std::variant<FreeTip, ClampedTip>;
+
+struct Drag {
+  double fluid_density = 0.0;
+  Vector6 laminar = Vector6::Zero();    ///< D_lam diagonal (3.11)
+  Vector6 turbulent = Vector6::Zero();  ///< D_turb diagonal (3.12)
+};
+
+struct Buoyancy {
+  double fluid_density = 0.0;  ///< gravity acts on rho - fluid_density (2.36)
+};
+
+/// A uniform distributed wrench per unit length (loads.distributed).
+struct DistributedWrench {
+  VectorSchedule moment{Vector3::Zero()};
+  VectorSchedule force{Vector3::Zero()};
+  Frame frame = Frame::world;
+};
+
+struct Loads {
+  std::optional<Vector3> gravity;
+  std::optional<Drag> drag;
+  std::optional<Buoyancy> buoyancy;
+  std::optional<DistributedWrench> distributed;
+};
+
+/// Where an actuator sits in the section: a constant offset [x, y, 0], or a routing
+/// [[s, x, y], ...] interpolated linearly in s.
+struct Offset {
+  std::vector<std::pair<double, Vector2>> points;  ///< one point: constant
+  Vector2 at(double s) const;
+};
+
+struct Span {
+  double s0 = 0.0, s1 = 0.0;
+};
+
+struct Cable {
+  Offset offset;
+  std::optional<ScalarSchedule> tension;       ///< [N]; exactly one of tension, displacement
+  std::optional<ScalarSchedule> displacement;  ///< [m], cable pulled in (2.47)
+  std::optional<Span> span;
+  std::optional<std::pair<double, double>> limits;  ///< input range for the workspace
+};
+
+struct Fluidic {
+  Offset offset;
+  double chamber_radius = 0.0;
+  std::optional<ScalarSchedule> pressure;  ///< [Pa]; exactly one of pressure, volume
+  std::optional<ScalarSchedule> volume;    ///< [m^3]
+  std::optional<Span> span;
+  std::optional<std::pair<double, double>> limits;
+};
+
+struct MuscleLaw {
+  std::string type = "linear";  ///< force = gain q - stiffness (Delta - Delta*) / Delta*
+  double gain = 0.0;
+  double stiffness = 0.0;
+};
+
+struct Muscle {
+  Offset offset;
+  rod::Section section;
+  rod::Material material;
+  ScalarSchedule input{0.0};  ///< q
+  MuscleLaw law;
+  std::optional<Span> span;
+  std::optional<std::pair<double, double>> limits;
+};
+
+using Actuator = std::variant<Cable, Fluidic, Muscle>;
+
+struct Dynamics {
+  std::optional<double> t_end;
+  std::optional<double> dt;  ///< nullopt: auto
+  Initial initial = Initial::straight;
+  int output_every = 1;
+  std::optional<std::string> scheme;
+};
+
+struct Solver {
+  std::string scheme = "chebyshev";
+  int nodes = 24;
+  double tol = 1e-10;
+  int max_iterations = 50;
+};
+
+struct Scene {
+  std::string schema = kSceneSchema;
+  std::string name;
+  Rod rod;
+  Base base;
+  Tip tip = FreeTip{};
+  Loads loads;
+  std::vector<Actuator> actuators;
+  std::optional<Dynamics> dynamics;
+  Solver solver;
+  std::string source_path;  ///< the file it was read from
+
+  bool tip_clamped() const { return std::holds_alternative<ClampedTip>(tip); }
+};
+
+}  // namespace rodlab::scene

@@ -1,0 +1,65 @@
+#include "rodlab/solvers/schemes.hpp"
+
+#include <array>
+
+namespace rodlab::solvers {
+namespace {
+
+constexpr std::string_view kStaticsIssue = "the statics issue (#3)";
+constexpr std::string_view kDynamicsIssue = "the dynamics issue (#4)";
+
+constexpr std::array<SchemeInfo, 12> kSchemes{{
+    {"rkmk-euler-explicit", Problem::statics, "1", false, false,
+     "shooting, explicit Euler RKMK", kStaticsIssue},
+    {"rkmk-euler-implicit", Problem::statics, "1", true, false,
+     "shooting, implicit Euler RKMK", kStaticsIssue},
+    {"rkmk-midpoint-explicit", Problem::statics, "2", false, false,
+     "shooting, explicit midpoint RKMK", kStaticsIssue},
+    {"rkmk-midpoint-implicit", Problem::statics, "2", true, false,
+     "shooting, implicit midpoint RKMK", kStaticsIssue},
+    {"rkmk-rk4", Problem::statics, "4", false, false,
+     "shooting, classical RK4 Munthe-Kaas, dexp^-1 series of order 2", kStaticsIssue},
+    {"chebyshev", Problem::statics, "spectral", true, false,
+     "Chebyshev-Lobatto pseudospectral collocation, Newton with a dense Jacobian", kStaticsIssue},
+    {"kinsol", Problem::statics, ">=4", true, true,
+     "reference: global collocation solved by SUNDIALS KINSOL with a sparse KLU Jacobian",
+     kStaticsIssue},
+    {"variational", Problem::dynamics, "2", false, false,
+     "explicit discrete variational Lie-group integrator (thesis Algorithm 1)", kDynamicsIssue},
+    {"implicit-midpoint", Problem::dynamics, "2", true, false,
+     "implicit midpoint in time, explicit RKMK in space, single shooting (thesis Algorithm 2)",
+     kDynamicsIssue},
+    {"implicit-midpoint-collocation", Problem::dynamics, "2", true, false,
+     "implicit midpoint in time, each step's BVP solved globally by KINSOL + KLU", kDynamicsIssue},
+    {"bdf-alpha", Problem::dynamics, "2", true, false,
+     "BDF-alpha in time with shooting in space (Till, Aloi & Rucker 2019)", kDynamicsIssue},
+    {"ida", Problem::dynamics, "variable", true, true,
+     "reference: method of lines in s, SUNDIALS IDA with KLU at tight tolerances",
+     kDynamicsIssue},
+}};
+
+}  // namespace
+
+std::span<const SchemeInfo> all_schemes() { return kSchemes; }
+
+std::optional<SchemeInfo> find_scheme(std::string_view name) {
+  for (const auto& s : kSchemes)
+    if (s.name == name) return s;
+  return std::nullopt;
+}
+
+std::string scheme_names(Problem problem) {
+  std::string out;
+  for (const auto& s : kSchemes) {
+    if (s.problem != problem) continue;
+    if (!out.empty()) out += ", ";
+    out += s.name;
+  }
+  return out;
+}
+
+std::string_view to_string(Problem problem) {
+  return problem == Problem::statics ? "statics" : "dynamics";
+}
+
+}  // namespace rodlab::solvers
