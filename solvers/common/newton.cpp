@@ -1,0 +1,107 @@
+#include "rodlab/solvers/common/newton.hpp"
+
+#include <cmath>
+
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+namespace rodlab::solvers {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+struct Evaluator {
+  const Residual& F;
+  int count = 0;
+  bool operator()(const VectorXd& x, VectorXd& out) {
+    ++count;
+    return F(x, out) && out.allFinite();
+  }
+};
+
+bool fd_jacobian(Evaluator& eval, const VectorXd& x, const VectorXd& Fx, double step, MatrixXd& J) {
+  const Eigen::Index n = x.size();
+  J.resize(Fx.size(), n);
+  VectorXd xp = x, Fp(Fx.size());
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double h = step * std::max(1.0, std::abs(x[j]));
+    xp[j] = x[j] + h;
+    if (!eval(xp, Fp)) {  // try the other side before giving up
+      xp[j] = x[j] - h;
+      if (!eval(xp, Fp)) return false;
+      J.col(j) = (Fx - Fp) / h;
+    } else {
+      J.col(j) = (Fp - Fx) / h;
+    }
+    xp[j] = x[j];
+  }
+  return true;
+}
+
+}  // namespace
+
+NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& options) {
+  NewtonResult out;
+  Evaluator eval{F};
+  out.x = std::move(x0);
+  out.F.resize(out.x.size());
+  auto finish = [&](bool converged, std::string reason) {
+    out.converged = converged;
+    out.reason = std::move(reason);
+    out.residual_norm = out.F.size() ? out.F.lpNorm<Eigen::Infinity>() : 0.0;
+    out.evaluations = eval.count;
+    return out;
+  };
+  if (!eval(out.x, out.F)) {
+    out.F.setConstant(std::numeric_limits<double>::infinity());
+    return finish(false, "the residual is not finite at the initial guess");
+  }
+
+  MatrixXd J;
+  bool have_J = false;  // J is usable: a finite-difference Jacobian or its Broyden update
+  bool J_is_fd = false; // J is a finite-difference Jacobian at the current x
+  VectorXd x_new(out.x.size()), F_new(out.F.size());
+  for (out.iterations = 0; out.iterations < options.max_iterations; ++out.iterations) {
+    if (out.F.lpNorm<Eigen::Infinity>() <= options.tol) return finish(true, "");
+    if (!have_J) {
+      if (!fd_jacobian(eval, out.x, out.F, options.fd_step, J))
+        return finish(false, "the residual is not finite near the current iterate");
+      have_J = J_is_fd = true;
+    }
+    const VectorXd dx = -J.colPivHouseholderQr().solve(out.F);
+    if (!dx.allFinite()) return finish(false, "singular Jacobian");
+
+    // Backtracking on |F|_2 (Armijo with a small slope fraction).
+    const double f0 = out.F.norm();
+    double alpha = 1.0;
+    bool accepted = false;
+    for (int k = 0; k < 12; ++k, alpha *= 0.5) {
+      x_new = out.x + alpha * dx;
+      if (eval(x_new, F_new) && F_new.norm() <= (1.0 - 1e-4 * alpha) * f0) {
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) {
+      if (J_is_fd) return finish(false, "line search failed to reduce the residual");
+      have_J = false;  // a stale Broyden Jacobian: refresh it and retry from the same x
+      continue;
+    }
+    const VectorXd s = x_new - out.x;
+    const double ratio = F_new.norm() / f0;
+    if (options.broyden && ratio < 0.5) {
+      J += ((F_new - out.F) - J * s) * s.transpose() / s.squaredNorm();
+      J_is_fd = false;
+    } else {
+      have_J = false;  // slow progress: a fresh Jacobian at the new point
+    }
+    out.x = x_new;
+    out.F = F_new;
+  }
+  if (out.F.lpNorm<Eigen::Infinity>() <= options.tol) return finish(true, "");
+  return finish(false, "no convergence within " + std::to_string(options.max_iterations) +
+                           " Newton iterations");
+}
+
+}  // namespace rodlab::solvers

@@ -1,0 +1,33 @@
+#pragma once
+// Damped Newton for small dense nonlinear systems F(x) = 0 (shooting unknowns, collocation
+// blocks): finite-difference Jacobian, Broyden updates while they keep converging, and a
+// backtracking line search on |F|_2. Non-convergence is a status, never an exception.
+#include <functional>
+#include <string>
+
+#include <Eigen/Core>
+
+namespace rodlab::solvers {
+
+struct NewtonOptions {
+  double tol = 1e-10;           ///< stop when |F|_inf <= tol
+  int max_iterations = 50;
+  double fd_step = 1e-7;        ///< relative forward-difference step (x is assumed O(1) scaled)
+  bool broyden = true;          ///< rank-one updates between finite-difference Jacobians
+};
+
+struct NewtonResult {
+  Eigen::VectorXd x, F;
+  double residual_norm = 0.0;   ///< |F|_inf at x
+  int iterations = 0;
+  int evaluations = 0;          ///< calls of F, including those of the Jacobians
+  bool converged = false;
+  std::string reason;           ///< why not, when not converged
+};
+
+/// F writes the residual for x and returns false when it cannot be evaluated (non-finite).
+using Residual = std::function<bool(const Eigen::VectorXd& x, Eigen::VectorXd& F)>;
+
+NewtonResult solve_newton(const Residual& F, Eigen::VectorXd x0, const NewtonOptions& options);
+
+}  // namespace rodlab::solvers

@@ -1,0 +1,24 @@
+#pragma once
+// Single shooting for the statics BVP with an RKMK integrator: Newton on the base internal
+// wrench Lambda(0) so that the tip conditions hold, started from the equilibrium of the
+// undeformed rod (exact to first order in the loads), with load continuation when the direct
+// solve fails.
+#include "rodlab/result/static_result.hpp"
+#include "rodlab/solvers/statics/rkmk.hpp"
+
+namespace rodlab::solvers::statics {
+
+struct ShootingOptions {
+  int nodes = 50;
+  double tol = 1e-10;
+  int max_iterations = 50;
+};
+
+result::StaticResult solve_shooting(const StaticProblem& problem, RkmkMethod method,
+                                    const ShootingOptions& options);
+
+/// Lambda(0) of the undeformed rod in equilibrium with the loads (marching (2.34) back from
+/// the tip with xi = xi*): the shooting's initial guess.
+Vector6 rigid_base_wrench(const StaticProblem& problem, int steps);
+
+}  // namespace rodlab::solvers::statics
