@@ -23,8 +23,10 @@ inline Slope slope(const StaticProblem& P, const SO3& R, const Vector6& Lambda) 
 inline SO3 rotate(const SO3& R, const Vector6& Theta) { return R * SO3::exp(Theta.head<3>()); }
 
 /// (2.84) theta' = dexp^-1_{-theta} xi, with dexp^-1 truncated after ad^2 (q = 2 >= p - 2 = 2).
+/// Sum_k B_k/k! ad_{-Theta}^k y for k <= 2: y + ad_Theta y / 2 + ad_Theta^2 y / 12.
 inline Vector6 dexp_inv_neg_q2(const Vector6& Theta, const Vector6& y) {
-  return lie::se3::dexp_inv_series_apply(-Theta, y, 2);
+  const Vector6 a1 = lie::se3::ad_apply(Theta, y);
+  return y + 0.5 * a1 + (1.0 / 12.0) * lie::se3::ad_apply(Theta, a1);
 }
 
 Node step_euler_explicit(const StaticProblem& P, const Node& n, double h) {  // (2.106)

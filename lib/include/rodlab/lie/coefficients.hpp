@@ -34,18 +34,27 @@ constexpr double factorial(int n) {
 
 // Bernoulli numbers scaled by k!: beta_k = B_k / k!, the Taylor coefficients of x / (e^x - 1)
 // (with B_1 = -1/2). Recurrence: sum_{j=0}^{m} beta_j / (m + 1 - j)! = 0 for m >= 1.
+// The sum cancels (its largest terms are ~7 |beta_m|), so the recurrence is run in long double
+// and rounded to double once: run in double its errors reach ~50 eps at k = 10 and ~140 eps at
+// k = 80, which also showed in the e and f series (tests/lie/test_coefficients.cpp).
 template <std::size_t N>
 constexpr std::array<double, N> bernoulli_over_factorial() {
-  std::array<double, N> beta{};
-  beta[0] = 1.0;
+  std::array<long double, N> beta{};
+  beta[0] = 1.0L;
   for (std::size_t m = 1; m < N; ++m) {
-    double s = 0.0;
-    for (std::size_t j = 0; j < m; ++j) s += beta[j] / factorial(static_cast<int>(m + 1 - j));
+    long double s = 0.0L;
+    for (std::size_t j = 0; j < m; ++j) {
+      long double fact = 1.0L;  // (m + 1 - j)!
+      for (std::size_t i = 2; i <= m + 1 - j; ++i) fact *= static_cast<long double>(i);
+      s += beta[j] / fact;
+    }
     beta[m] = -s;
   }
+  std::array<double, N> rounded{};
+  for (std::size_t m = 0; m < N; ++m) rounded[m] = static_cast<double>(beta[m]);
   // Odd Bernoulli numbers beyond B_1 vanish; clear the rounding residue of the recurrence.
-  for (std::size_t m = 3; m < N; m += 2) beta[m] = 0.0;
-  return beta;
+  for (std::size_t m = 3; m < N; m += 2) rounded[m] = 0.0;
+  return rounded;
 }
 
 // Horner evaluation of sum_k coef[k] * x^k.
@@ -54,6 +63,21 @@ constexpr double horner(const std::array<double, N>& coef, double x) {
   double r = coef[N - 1];
   for (std::size_t k = N - 1; k-- > 0;) r = r * x + coef[k];
   return r;
+}
+
+// The same sum as E(x^2) + x O(x^2), two independent Horner chains: half the latency of horner
+// for long series. Only for coefficients of one sign (for alternating ones E and x O cancel).
+template <std::size_t N>
+constexpr double horner_even_odd(const std::array<double, N>& coef, double x) {
+  const double x2 = x * x;
+  double even = 0.0, odd = 0.0;
+  std::size_t k = N;
+  if (k % 2 == 1) even = coef[--k];
+  for (; k >= 2; k -= 2) {
+    odd = odd * x2 + coef[k - 1];
+    even = even * x2 + coef[k - 2];
+  }
+  return even + x * odd;
 }
 
 template <std::size_t N>
@@ -100,9 +124,11 @@ constexpr std::array<double, N> series_f() {
 /// theta = switch * (1 +/- 1e-3).
 inline constexpr double kSincSwitch = 1e-3;    // sin t / t: 1 - t^2/6 + t^4/120 exact below
 inline constexpr double kCSwitch = 1.0;        // c(t): 12 terms, truncation < 1e-25 at t = 1
-inline constexpr double kDSwitch = 2.0;        // d1, d2: 14 terms, truncation < 1e-20 at t = 2
+// d2 = (b - 3c)/t^2 and f cancel up to ~7x at t = 2-2.5, where the closed forms were 15 eps off
+// (tests/lie/test_coefficients.cpp); from t = 4 on they stay within ~5 eps, so their series run to 4.
+inline constexpr double kDSwitch = 4.0;        // d1, d2: 18 terms, truncation < 1e-22 at t = 4
 inline constexpr double kESwitch = 2.0;        // e(t): 22 terms (ratio (t/2pi)^2 = 0.1 at t = 2)
-inline constexpr double kFSwitch = 2.5;        // f(t): 30 terms
+inline constexpr double kFSwitch = 4.0;        // f(t): 50 terms (ratio 0.41 at t = 4, tail < 1e-18)
 inline constexpr std::array<double, 5> kSwitchPoints{kSincSwitch, kCSwitch, kDSwitch, kESwitch,
                                                      kFSwitch};
 
@@ -117,6 +143,31 @@ inline double sinc(double t) {
 
 inline double a(double t) { return sinc(t); }
 
+/// cos(t) and sin(t)/t together. Below kCosSincSwitch both come from their Taylor series
+/// (truncation below 1e-19 there), which is several times cheaper than libm's sin and cos;
+/// the stage rotations of Lie-group integrators are almost always this small.
+inline constexpr double kCosSincSwitch = 0.25;
+inline void cos_sinc(double t, double& cos_t, double& sinc_t) {
+  if (std::abs(t) < kCosSincSwitch) {
+    static constexpr auto sinc_series = [] {  // (-1)^k / (2k+1)!
+      std::array<double, 8> c{};
+      for (int k = 0; k < 8; ++k) c[k] = (k % 2 ? -1.0 : 1.0) / detail::factorial(2 * k + 1);
+      return c;
+    }();
+    static constexpr auto cos_series = [] {  // (-1)^k / (2k)!
+      std::array<double, 9> c{};
+      for (int k = 0; k < 9; ++k) c[k] = (k % 2 ? -1.0 : 1.0) / detail::factorial(2 * k);
+      return c;
+    }();
+    const double t2 = t * t;
+    sinc_t = detail::horner(sinc_series, t2);
+    cos_t = detail::horner(cos_series, t2);
+    return;
+  }
+  cos_t = std::cos(t);
+  sinc_t = std::sin(t) / t;
+}
+
 /// (1 - cos t)/t^2 = sinc(t/2)^2 / 2: cancellation-free for every t.
 inline double b(double t) {
   const double s = sinc(0.5 * t);
@@ -130,14 +181,14 @@ inline double c(double t) {
 }
 
 inline double d1(double t) {
-  static constexpr auto coef = detail::series_d1<14>();
+  static constexpr auto coef = detail::series_d1<18>();
   if (std::abs(t) < kDSwitch) return detail::horner(coef, t * t);
   const double t2 = t * t;
   return (a(t) - 2.0 * b(t)) / t2;
 }
 
 inline double d2(double t) {
-  static constexpr auto coef = detail::series_d2<14>();
+  static constexpr auto coef = detail::series_d2<18>();
   if (std::abs(t) < kDSwitch) return detail::horner(coef, t * t);
   const double t2 = t * t;
   return (b(t) - 3.0 * c(t)) / t2;
@@ -154,8 +205,8 @@ inline double e(double t) {
 /// e'(t)/t. With u = t/2 and h(t) = 1 - u cot u: h' = (u / sin^2 u - cot u) / 2,
 /// e' = h'/t^2 - 2 h/t^3, so f = h'/t^3 - 2 h/t^4.
 inline double f(double t) {
-  static constexpr auto coef = detail::series_f<30>();
-  if (std::abs(t) < kFSwitch) return detail::horner(coef, t * t);
+  static constexpr auto coef = detail::series_f<50>();  // all positive
+  if (std::abs(t) < kFSwitch) return detail::horner_even_odd(coef, t * t);
   const double u = 0.5 * t;
   const double su = std::sin(u), cu = std::cos(u);
   const double h = 1.0 - u * cu / su;

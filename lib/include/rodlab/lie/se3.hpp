@@ -29,8 +29,9 @@ namespace se3 {
 inline Vector3 angular(const Vector6& x) { return x.head<3>(); }
 inline Vector3 linear(const Vector6& x) { return x.tail<3>(); }
 inline Vector6 join(const Vector3& angular_part, const Vector3& linear_part) {
-  Vector6 x;
-  x << angular_part, linear_part;
+  Vector6 x;  // fixed-size block writes (a comma initializer would go through dynamic blocks)
+  x.head<3>() = angular_part;
+  x.tail<3>() = linear_part;
   return x;
 }
 

@@ -73,10 +73,11 @@ class SO3 {
 
   /// exp(w^): q = (cos(t/2), sin(t/2)/t w). No cancellation anywhere, exact for large t.
   static SO3 exp(const Vector3& w) {
-    const double t = w.norm();
-    const double half = 0.5 * t;
-    const Vector3 v = 0.5 * coefficients::sinc(half) * w;
-    return SO3(Quaternion(std::cos(half), v.x(), v.y(), v.z()), Unchecked{});
+    const double half = 0.5 * w.norm();
+    double c, s;  // cos(half), sin(half)/half
+    coefficients::cos_sinc(half, c, s);
+    const Vector3 v = 0.5 * s * w;
+    return SO3(Quaternion(c, v.x(), v.y(), v.z()), Unchecked{});
   }
 
   /// From a rotation matrix (assumed orthonormal with det +1; Eigen uses Shepperd's method).

@@ -1,0 +1,59 @@
+// rodlab dynamic SCENE [options]: time simulation.
+#include <array>
+
+#include "rodlab/rod/characteristics.hpp"
+
+#include "availability.hpp"
+#include "command.hpp"
+#include "common_options.hpp"
+#include "result_output.hpp"
+#include "solve.hpp"
+
+namespace rodlab::cli {
+namespace {
+
+constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
+constexpr std::array<OptionSpec, 8> kOptions{kSchemeOption,  kNodesOption, kTolOption,
+                                             kDtOption,      kTEndOption,  kOutputEveryOption,
+                                             kOutFileOption, kSetOption};
+
+int run(const Invocation& inv) {
+  OptionReader reader(inv.args);
+  const SolveOptions options = read_solve_options(reader, solvers::Problem::dynamics, "dynamic");
+  reader.finish();
+  const scene::Scene scene = load_checked_scene(options);
+  DynamicRun run = resolve_dynamic_run(options, scene, "dynamic");
+  require_available(run.scheme);
+
+  if (run.dt.automatic) {
+    const auto tip = scene.tip_clamped() ? rod::TipSupport::clamped : rod::TipSupport::free;
+    run.dt = TimeStep{false, rod::characteristics(scene.rod.to_model(), run.nodes, tip).dt_thesis};
+  }
+  return deliver(solve_dynamic(scene, run), options.out);
+}
+
+}  // namespace
+
+const Command& dynamic_command() {
+  static const Command command{
+      "dynamic",
+      "SCENE [options]",
+      "time simulation of the rod in SCENE",
+      "Simulates the scene from t = 0 to the end time (--t-end or dynamics.t_end). The scheme\n"
+      "is --scheme, else dynamics.scheme, else solver.scheme if it names a dynamics scheme,\n"
+      "else variational (`rodlab schemes` lists them). --dt auto (the default when neither\n"
+      "--dt nor dynamics.dt is given) uses the explicit time step (3.44) that `rodlab check`\n"
+      "prints. The options and the scene are checked before anything runs. The result\n"
+      "(rodlab.dynamic-result/1) is printed as a summary and, with --out, written atomically\n"
+      "as JSON or as CSV (one row per output time).\n"
+      "\n"
+      "Exit status: 0 finished; 1 a step did not converge or the run went unstable (the result\n"
+      "file is still written, with \"converged\": false and the reason); 2 bad input or usage\n"
+      "(nothing is written).\n",
+      kPositionals,
+      kOptions,
+      &run};
+  return command;
+}
+
+}  // namespace rodlab::cli

@@ -1,0 +1,49 @@
+// rodlab static SCENE [options]: static equilibrium.
+#include <array>
+
+#include "availability.hpp"
+#include "command.hpp"
+#include "common_options.hpp"
+#include "result_output.hpp"
+#include "solve.hpp"
+
+namespace rodlab::cli {
+namespace {
+
+constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
+constexpr std::array<OptionSpec, 5> kOptions{kSchemeOption, kNodesOption, kTolOption,
+                                             kOutFileOption, kSetOption};
+
+int run(const Invocation& inv) {
+  OptionReader reader(inv.args);
+  const SolveOptions options = read_solve_options(reader, solvers::Problem::statics, "static");
+  reader.finish();
+  const scene::Scene scene = load_checked_scene(options);
+  const StaticRun run = resolve_static_run(options, scene, "static");
+  require_available(run.scheme);
+
+  return deliver(solve_static(scene, run), options.out);
+}
+
+}  // namespace
+
+const Command& static_command() {
+  static const Command command{
+      "static",
+      "SCENE [options]",
+      "static equilibrium of the rod in SCENE",
+      "Solves the static equilibrium of the scene's rod under its loads and actuators at t = 0.\n"
+      "The scheme comes from --scheme or the scene's solver.scheme and must be a statics scheme\n"
+      "(`rodlab schemes` lists them). The options and the scene are checked before anything\n"
+      "runs. The result (spec: rodlab.static-result/1) is printed as a summary and, with --out,\n"
+      "written atomically as JSON or CSV.\n"
+      "\n"
+      "Exit status: 0 converged; 1 not converged (the result file is still written, with\n"
+      "\"converged\": false and the reason); 2 bad input or usage (nothing is written).\n",
+      kPositionals,
+      kOptions,
+      &run};
+  return command;
+}
+
+}  // namespace rodlab::cli

@@ -1,0 +1,170 @@
+#include "common_options.hpp"
+
+#include <system_error>
+
+#include "rodlab/io/result_writer.hpp"
+
+#include "errors.hpp"
+#include "format.hpp"
+
+namespace rodlab::cli {
+namespace fs = std::filesystem;
+using solvers::Problem;
+
+std::optional<solvers::SchemeInfo> fitting_scheme(std::string_view name, Problem problem,
+                                                  std::string_view command, std::string& why) {
+  const auto takes = "`rodlab " + std::string(command) + "` takes a " +
+                     std::string(solvers::to_string(problem)) +
+                     " scheme: " + solvers::scheme_names(problem);
+  const auto scheme = solvers::find_scheme(name);
+  if (!scheme) {
+    why = "unknown scheme '" + std::string(name) + "'; " + takes;
+    return std::nullopt;
+  }
+  if (scheme->problem != problem) {
+    why = std::string("'") + std::string(name) + "' is a " +
+          std::string(solvers::to_string(scheme->problem)) + " scheme; " + takes;
+    return std::nullopt;
+  }
+  return scheme;
+}
+
+std::vector<io::Override> read_overrides(OptionReader& reader) {
+  std::vector<io::Override> out;
+  for (const auto& text : reader.arguments().values(kSetOption.name)) {
+    try {
+      out.push_back(io::parse_override(text));
+    } catch (const io::SceneError& e) {
+      for (const auto& d : e.diagnostics())
+        reader.problem("--set " + text + ": " + (d.field.empty() ? "" : d.field + ": ") +
+                       d.message);
+    }
+  }
+  return out;
+}
+
+std::optional<fs::path> read_out_file(OptionReader& reader) {
+  const auto text = reader.text(kOutFileOption.name);
+  if (!text) return std::nullopt;
+  const fs::path path(*text);
+  bool ok = true;
+  try {
+    io::result_format(path);
+  } catch (const std::invalid_argument&) {
+    reader.problem("--out: the result file must end in .json or .csv (got " + *text + ")");
+    ok = false;
+  }
+  std::error_code ec;
+  const fs::path dir = path.parent_path();
+  if (!dir.empty() && !fs::is_directory(dir, ec)) {
+    reader.problem("--out: directory " + dir.string() + " does not exist (for " + *text + ")");
+    ok = false;
+  } else if (fs::is_directory(path, ec)) {
+    reader.problem("--out: " + *text + " is a directory; give a file name");
+    ok = false;
+  }
+  return ok ? std::optional(path) : std::nullopt;
+}
+
+std::optional<fs::path> read_out_dir(OptionReader& reader) {
+  const auto text = reader.text(kOutFileOption.name);
+  if (!text) return std::nullopt;
+  std::error_code ec;
+  if (fs::exists(*text, ec) && !fs::is_directory(*text, ec)) {
+    reader.problem("--out: " + *text + " exists and is not a directory");
+    return std::nullopt;
+  }
+  return fs::path(*text);
+}
+
+SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::string_view command) {
+  SolveOptions o;
+  if (!reader.arguments().positionals().empty())
+    o.scene_path = reader.arguments().positionals().back();
+  o.overrides = read_overrides(reader);
+  if (const auto name = reader.text(kSchemeOption.name)) {
+    std::string why;
+    o.scheme = fitting_scheme(*name, problem, command, why);
+    if (!o.scheme) reader.problem("--scheme: " + why);
+  }
+  o.nodes = reader.integer(kNodesOption.name, 2);
+  o.tol = reader.positive(kTolOption.name);
+  o.out = read_out_file(reader);
+  if (const auto dt = reader.text(kDtOption.name)) {
+    if (*dt == "auto") {
+      o.dt = TimeStep{};
+    } else if (const auto v = to_double(*dt); v && *v > 0.0) {
+      o.dt = TimeStep{false, *v};
+    } else {
+      reader.problem("--dt: must be a number > 0 or auto (got " + *dt + ")");
+    }
+  }
+  o.t_end = reader.positive(kTEndOption.name);
+  o.output_every = reader.integer(kOutputEveryOption.name, 1);
+  return o;
+}
+
+scene::Scene load_checked_scene(const SolveOptions& options) {
+  return io::load_scene(options.scene_path, options.overrides);
+}
+
+namespace {
+
+/// The scheme --scheme named, or the one the scene names in `field` (checked to fit).
+solvers::SchemeInfo chosen_scheme(const SolveOptions& options, const scene::Scene& scene,
+                                  std::string_view from_scene, std::string_view field,
+                                  Problem problem, std::string_view command) {
+  if (options.scheme) return *options.scheme;
+  std::string why;
+  if (auto scheme = fitting_scheme(from_scene, problem, command, why)) return *scheme;
+  io::SceneDiagnostic d;
+  d.source = scene.source_path.empty() ? options.scene_path : scene.source_path;
+  d.field = std::string(field);
+  d.message = why + " (or choose one with --scheme)";
+  throw io::SceneError({d});
+}
+
+}  // namespace
+
+StaticRun resolve_static_run(const SolveOptions& options, const scene::Scene& scene,
+                             std::string_view command) {
+  StaticRun run{chosen_scheme(options, scene, scene.solver.scheme, "solver.scheme",
+                              Problem::statics, command),
+                options.nodes.value_or(scene.solver.nodes), options.tol.value_or(scene.solver.tol),
+                scene.solver.max_iterations};
+  return run;
+}
+
+std::string scene_dynamics_scheme(const scene::Scene& scene) {
+  if (scene.dynamics && scene.dynamics->scheme) return *scene.dynamics->scheme;
+  const auto solver_scheme = solvers::find_scheme(scene.solver.scheme);
+  if (solver_scheme && solver_scheme->problem == Problem::dynamics) return scene.solver.scheme;
+  return std::string(kDefaultDynamicsScheme);
+}
+
+DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& scene,
+                               std::string_view command) {
+  const scene::Dynamics dynamics = scene.dynamics.value_or(scene::Dynamics{});
+  DynamicRun run;
+  run.scheme = chosen_scheme(options, scene, scene_dynamics_scheme(scene), "dynamics.scheme",
+                             Problem::dynamics, command);
+  run.nodes = options.nodes.value_or(scene.solver.nodes);
+  run.tol = options.tol.value_or(scene.solver.tol);
+  run.max_iterations = scene.solver.max_iterations;
+  const auto t_end = options.t_end ? options.t_end : dynamics.t_end;
+  if (!t_end)
+    throw UsageError("--t-end: no end time; give --t-end T or set dynamics.t_end in " +
+                     options.scene_path);
+  run.t_end = *t_end;
+  if (options.dt)
+    run.dt = *options.dt;
+  else
+    run.dt = dynamics.dt ? TimeStep{false, *dynamics.dt} : TimeStep{};
+  if (!run.dt.automatic && run.dt.value > run.t_end)
+    throw UsageError("--dt: the time step " + format_number(run.dt.value) +
+                     " s exceeds the end time " + format_number(run.t_end) + " s");
+  run.output_every = options.output_every.value_or(dynamics.output_every);
+  return run;
+}
+
+}  // namespace rodlab::cli

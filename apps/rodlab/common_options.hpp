@@ -1,0 +1,108 @@
+#pragma once
+// The options several subcommands share (interface spec section 2: --scheme, --nodes, --tol,
+// --out, --set; dynamic adds --dt, --t-end, --output-every), their help lines, how they are
+// read and checked, and how they combine with the scene's own settings (command-line
+// options win over the scene).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rodlab/io/scene_loader.hpp"
+#include "rodlab/scene/scene.hpp"
+#include "rodlab/solvers/schemes.hpp"
+
+#include "options.hpp"
+
+namespace rodlab::cli {
+
+inline constexpr OptionSpec kSchemeOption{
+    "--scheme", "NAME", "scheme (`rodlab schemes` lists them); default: from the scene"};
+inline constexpr OptionSpec kNodesOption{
+    "--nodes", "N", "number of nodes along the rod, integer >= 2; default: solver.nodes"};
+inline constexpr OptionSpec kTolOption{"--tol", "X", "solver tolerance > 0; default: solver.tol"};
+inline constexpr OptionSpec kOutFileOption{
+    "--out", "FILE", "write the result to FILE (.json or .csv); its directory must exist"};
+inline constexpr OptionSpec kSetOption{
+    "--set", "KEY=VALUE", "override a scene field by its dotted path, e.g. rod.material.E=2e6",
+    true};
+inline constexpr OptionSpec kDtOption{
+    "--dt", "X|auto", "time step > 0, or auto (the explicit step (3.44)); default: dynamics.dt"};
+inline constexpr OptionSpec kTEndOption{"--t-end", "T", "end time > 0; default: dynamics.t_end"};
+inline constexpr OptionSpec kOutputEveryOption{
+    "--output-every", "K", "record every K-th step, integer >= 1; default: dynamics.output_every"};
+
+/// The dynamics scheme used when neither --scheme, dynamics.scheme nor solver.scheme names one.
+inline constexpr std::string_view kDefaultDynamicsScheme = "variational";
+
+/// The scheme `rodlab dynamic` uses without --scheme: dynamics.scheme, else solver.scheme
+/// when that names a dynamics scheme, else kDefaultDynamicsScheme.
+std::string scene_dynamics_scheme(const scene::Scene& scene);
+
+/// A time step: a value, or automatic (the explicit step (3.44) from rod::characteristics).
+struct TimeStep {
+  bool automatic = true;
+  double value = 0.0;
+};
+
+/// The shared options as given on the command line (not yet combined with the scene).
+struct SolveOptions {
+  std::string scene_path;
+  std::vector<io::Override> overrides;
+  std::optional<solvers::SchemeInfo> scheme;
+  std::optional<int> nodes;
+  std::optional<double> tol;
+  std::optional<std::filesystem::path> out;
+  // dynamic only
+  std::optional<TimeStep> dt;
+  std::optional<double> t_end;
+  std::optional<int> output_every;
+};
+
+/// Reads the options of `command` that are among the shared ones above, recording problems
+/// in `reader`. `problem` is the class of schemes the command takes.
+SolveOptions read_solve_options(OptionReader& reader, solvers::Problem problem,
+                                std::string_view command);
+
+/// Every --set, parsed; a malformed one is recorded as a problem.
+std::vector<io::Override> read_overrides(OptionReader& reader);
+
+/// The scheme of that name if `command` (which takes `problem` schemes) can use it; otherwise
+/// nullopt and `why` says what is wrong and lists the valid names.
+std::optional<solvers::SchemeInfo> fitting_scheme(std::string_view name, solvers::Problem problem,
+                                                  std::string_view command, std::string& why);
+
+/// --out FILE: extension .json or .csv, existing directory, not a directory itself.
+std::optional<std::filesystem::path> read_out_file(OptionReader& reader);
+/// --out DIR: not an existing non-directory.
+std::optional<std::filesystem::path> read_out_dir(OptionReader& reader);
+
+/// Loads and checks the scene with the overrides (throws io::SceneError).
+scene::Scene load_checked_scene(const SolveOptions& options);
+
+/// The settings of one run, command line over scene.
+struct StaticRun {
+  solvers::SchemeInfo scheme;
+  int nodes = 0;
+  double tol = 0.0;
+  int max_iterations = 0;
+};
+struct DynamicRun {
+  solvers::SchemeInfo scheme;
+  int nodes = 0;
+  double tol = 0.0;
+  int max_iterations = 0;
+  double t_end = 0.0;
+  TimeStep dt;
+  int output_every = 1;
+};
+
+/// Combine options and scene; throws io::SceneError when the scene's own scheme does not fit
+/// (and --scheme does not replace it), or UsageError when dynamic lacks an end time.
+StaticRun resolve_static_run(const SolveOptions& options, const scene::Scene& scene,
+                             std::string_view command);
+DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& scene,
+                               std::string_view command);
+
+}  // namespace rodlab::cli

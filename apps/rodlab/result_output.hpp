@@ -1,0 +1,20 @@
+#pragma once
+// What `rodlab static` and `rodlab dynamic` do with a result: write it to --out (atomically,
+// JSON or CSV by extension), print a summary, and choose the exit status.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "rodlab/result/dynamic_result.hpp"
+#include "rodlab/result/static_result.hpp"
+
+namespace rodlab::cli {
+
+std::string summarize(const result::StaticResult& result);
+std::string summarize(const result::DynamicResult& result);
+
+/// Writes (if `out`), prints the summary, returns kSolved or kNotConverged.
+int deliver(const result::StaticResult& result, const std::optional<std::filesystem::path>& out);
+int deliver(const result::DynamicResult& result, const std::optional<std::filesystem::path>& out);
+
+}  // namespace rodlab::cli

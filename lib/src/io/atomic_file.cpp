@@ -1,0 +1,106 @@
+#include "rodlab/io/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <system_error>
+
+namespace rodlab::io {
+namespace {
+
+[[noreturn]] void throw_errno(int error, const std::string& what) {
+  throw std::system_error(error, std::generic_category(), what);
+}
+
+/// Closes and removes the temporary file unless released (after a successful rename).
+class TempFile {
+ public:
+  TempFile(int fd, std::filesystem::path path) : fd_(fd), path_(std::move(path)) {}
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  ~TempFile() {
+    close();
+    if (!path_.empty()) ::unlink(path_.c_str());
+  }
+
+  int fd() const { return fd_; }
+  const std::filesystem::path& path() const { return path_; }
+
+  /// Returns 0 or the errno of a failed close(2) (which may report a deferred write error).
+  int close() {
+    if (fd_ < 0) return 0;
+    const int rc = ::close(fd_);
+    fd_ = -1;
+    return rc == 0 ? 0 : errno;
+  }
+  void release() { path_.clear(); }
+
+ private:
+  int fd_;
+  std::filesystem::path path_;
+};
+
+/// Creates "<dir>/.<name>.tmp-<pid>-<counter>-<random>" exclusively (O_EXCL), so that two
+/// writers, in this process or another, never share a temporary file.
+TempFile create_temp_next_to(const std::filesystem::path& target) {
+  static std::atomic<unsigned long> counter{0};
+  std::random_device device;
+  const std::filesystem::path dir =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  std::string stem = ".";  // (appending, not "." + ...: GCC 12 -Wrestrict false positive)
+  stem += target.filename().string();
+  stem += ".tmp-";
+  stem += std::to_string(::getpid());
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const std::filesystem::path candidate =
+        dir / (stem + "-" + std::to_string(counter++) + "-" + std::to_string(device()));
+    const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) return TempFile(fd, candidate);
+    if (errno != EEXIST) throw_errno(errno, "cannot write " + target.string());
+  }
+  throw_errno(EEXIST, "cannot write " + target.string() + ": no unique temporary name");
+}
+
+void write_all(int fd, std::string_view content, const std::filesystem::path& target) {
+  while (!content.empty()) {
+    const ssize_t n = ::write(fd, content.data(), content.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw_errno(errno, "cannot write " + target.string());
+    }
+    content.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
+/// Makes the rename itself durable; failure here does not undo a completed write.
+void sync_directory(const std::filesystem::path& target) {
+  const std::filesystem::path dir =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  if (path.empty() || !path.has_filename())
+    throw_errno(EINVAL, "cannot write '" + path.string() + "': not a file name");
+  TempFile temp = create_temp_next_to(path);
+  write_all(temp.fd(), content, path);
+  if (::fsync(temp.fd()) != 0) throw_errno(errno, "cannot write " + path.string());
+  if (const int error = temp.close(); error != 0)
+    throw_errno(error, "cannot write " + path.string());
+  if (::rename(temp.path().c_str(), path.c_str()) != 0)
+    throw_errno(errno, "cannot write " + path.string());
+  temp.release();
+  sync_directory(path);
+}
+
+}  // namespace rodlab::io

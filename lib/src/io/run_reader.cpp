@@ -1,0 +1,77 @@
+// dynamics and solver settings, and the scheme names they accept.
+#include <algorithm>
+#include <array>
+
+#include "scene_readers.hpp"
+
+namespace rodlab::io {
+namespace {
+
+// A copy of the catalogue in solvers/common/schemes.cpp (rodlab::io does not link
+// rodlab::solvers); tests/scene/test_scheme_names.cpp keeps the two equal.
+constexpr std::array<SceneSchemeName, 12> kSchemeNames{{
+    {"rkmk-euler-explicit", false},
+    {"rkmk-euler-implicit", false},
+    {"rkmk-midpoint-explicit", false},
+    {"rkmk-midpoint-implicit", false},
+    {"rkmk-rk4", false},
+    {"chebyshev", false},
+    {"kinsol", false},
+    {"variational", true},
+    {"implicit-midpoint", true},
+    {"implicit-midpoint-collocation", true},
+    {"bdf-alpha", true},
+    {"ida", true},
+}};
+
+/// The names of all schemes, or of the dynamics schemes only.
+std::vector<std::string_view> names(bool dynamics_only) {
+  std::vector<std::string_view> out;
+  for (const auto& s : kSchemeNames)
+    if (!dynamics_only || s.dynamics) out.push_back(s.name);
+  return out;
+}
+
+}  // namespace
+
+std::span<const SceneSchemeName> scene_scheme_names() { return kSchemeNames; }
+
+namespace detail {
+
+scene::Dynamics read_dynamics(Checker& c, const Field& f) {
+  scene::Dynamics d;
+  if (!c.keys(f, {"t_end", "dt", "initial", "output_every", "scheme"})) return d;
+  d.t_end = c.number(c.child(f, "t_end"), Range::positive());
+
+  const Field dt = c.child(f, "dt");
+  if (dt.present() && !(dt.node.IsScalar() && dt.node.Scalar() == "auto")) {
+    if (dt.node.IsScalar() && !looks_like_number(dt.node))
+      c.error(dt, "must be a number > 0 or auto (got " + describe(dt.node) + ")");
+    else if ((d.dt = c.number(dt, Range::positive())) && d.t_end && *d.dt > *d.t_end)
+      c.error(dt, "must not exceed t_end = " + format_number(*d.t_end) + " (got " +
+                      describe(dt.node) + ")");
+  }
+
+  if (auto initial = c.choice(c.child(f, "initial"), {"straight", "static"}))
+    d.initial = *initial == 0 ? scene::Initial::straight : scene::Initial::static_equilibrium;
+  if (auto every = c.integer(c.child(f, "output_every"), 1)) d.output_every = *every;
+
+  const Field scheme = c.child(f, "scheme");
+  const auto dynamics_names = names(true);
+  if (auto k = c.choice(scheme, dynamics_names)) d.scheme = std::string(dynamics_names[*k]);
+  return d;
+}
+
+scene::Solver read_solver(Checker& c, const Field& f) {
+  scene::Solver s;
+  if (!c.keys(f, {"scheme", "nodes", "tol", "max_iterations"})) return s;
+  const auto all_names = names(false);
+  if (auto k = c.choice(c.child(f, "scheme"), all_names)) s.scheme = std::string(all_names[*k]);
+  if (auto nodes = c.integer(c.child(f, "nodes"), 2)) s.nodes = *nodes;
+  if (auto tol = c.number(c.child(f, "tol"), Range::positive())) s.tol = *tol;
+  if (auto it = c.integer(c.child(f, "max_iterations"), 1)) s.max_iterations = *it;
+  return s;
+}
+
+}  // namespace detail
+}  // namespace rodlab::io
