@@ -13,15 +13,24 @@ void fill_static_result(const StaticProblem& problem, std::span<const double> s,
   out.max_det_deviation = 0.0;
   out.max_orthogonality_error = 0.0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    out.centerline[i] = {s[i], g[i], problem.strain(Lambda[i])};
+    // The strain at a node uses the actuators active just after it (just before, at the tip).
+    const double probe = i + 1 < s.size() ? 0.5 * (s[i] + s[i + 1]) : s[i] - 1e-12 * problem.length();
+    const auto mask = problem.has_actuators() ? problem.active_mask(probe) : 0U;
+    out.centerline[i] = {s[i], g[i], mask ? problem.strain(Lambda[i], s[i], mask) : problem.strain(Lambda[i])};
     const lie::Matrix3 R = g[i].rotation_matrix();
     out.max_det_deviation = std::max(out.max_det_deviation, std::abs(R.determinant() - 1.0));
     out.max_orthogonality_error =
         std::max(out.max_orthogonality_error, (R.transpose() * R - lie::Matrix3::Identity()).norm());
   }
-  // lambda(0): for a Cosserat rod K (xi(0) - xi*); for a Kirchhoff rod its force part is the
-  // constraint force that keeps nu = nu*.
-  out.base_wrench = Lambda.empty() ? Vector6::Zero() : Vector6(Lambda.front());
+  // lambda(0) of the rod itself (the actuators' share removed): for a Cosserat rod
+  // K (xi(0) - xi*); for a Kirchhoff rod its force part is the constraint force keeping nu = nu*.
+  if (Lambda.empty()) {
+    out.base_wrench = Vector6::Zero();
+  } else {
+    const double probe = s.size() > 1 ? 0.5 * (s[0] + s[1]) : 0.0;
+    const auto mask = problem.has_actuators() ? problem.active_mask(probe) : 0U;
+    out.base_wrench = problem.rod_wrench(Lambda.front(), out.centerline.front().twist, s[0], mask);
+  }
 }
 
 }  // namespace rodlab::solvers::statics

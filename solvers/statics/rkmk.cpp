@@ -12,48 +12,79 @@ struct Slope {
   Vector6 xi, dLambda;
 };
 
-inline Slope slope(const StaticProblem& P, const SO3& R, const Vector6& Lambda) {
-  Slope k;
-  k.xi = P.strain(Lambda);
-  k.dLambda = P.wrench_derivative(R, k.xi, Lambda);
-  return k;
-}
+/// One sub-step's context: the problem, the actuators active on it, and the accumulation of
+/// actuator path lengths (stage weights w_j, sum_j w_j = 1).
+struct Stretch {
+  const StaticProblem& P;
+  StaticProblem::Mask mask;
+  std::array<double, StaticProblem::kMaxActuators>* lengths;  // null: not tracked
+  double a, b;  // the sub-step [a, b]
+
+  /// Actuator paths are evaluated strictly inside [a, b]: at a routing knot the offset rate r'
+  /// jumps, and each sub-step must see the one-sided values of its own segment.
+  double inside(double s) const {
+    const double eps = 1e-9 * (b - a);
+    return s < a + eps ? a + eps : (s > b - eps ? b - eps : s);
+  }
+  Vector6 strain(const Vector6& Lambda, double s) const {
+    return mask ? P.strain(Lambda, inside(s), mask) : P.strain(Lambda);
+  }
+  Slope slope(const SO3& R, const Vector6& Lambda, double s) const {
+    Slope k;
+    k.xi = strain(Lambda, s);
+    k.dLambda = P.wrench_derivative(R, k.xi, Lambda);
+    return k;
+  }
+  void add_length(double h_weight, double s, const Vector6& xi) const {
+    if (!lengths) return;
+    for (std::size_t k = 0; k < P.actuators().size(); ++k)
+      if ((mask >> k) & 1U) (*lengths)[k] += h_weight * P.actuators()[k].path.length_rate(inside(s), xi);
+  }
+};
 
 /// R exp(Theta_omega): the stages need only the rotation (the loads depend on R, not on p).
 inline SO3 rotate(const SO3& R, const Vector6& Theta) { return R * SO3::exp(Theta.head<3>()); }
 
-/// (2.84) theta' = dexp^-1_{-theta} xi, with dexp^-1 truncated after ad^2 (q = 2 >= p - 2 = 2).
 /// Sum_k B_k/k! ad_{-Theta}^k y for k <= 2: y + ad_Theta y / 2 + ad_Theta^2 y / 12.
 inline Vector6 dexp_inv_neg_q2(const Vector6& Theta, const Vector6& y) {
   const Vector6 a1 = lie::se3::ad_apply(Theta, y);
   return y + 0.5 * a1 + (1.0 / 12.0) * lie::se3::ad_apply(Theta, a1);
 }
 
-Node step_euler_explicit(const StaticProblem& P, const Node& n, double h) {  // (2.106)
-  const Slope k = slope(P, n.g.rotation(), n.Lambda);
+Node step_euler_explicit(const Stretch& X, const Node& n, double s, double h) {  // (2.106)
+  const Slope k = X.slope(n.g.rotation(), n.Lambda, s);
+  X.add_length(h, s, k.xi);
   return {n.g * SE3::exp(h * k.xi), n.Lambda + h * k.dLambda};
 }
 
-Node step_midpoint_explicit(const StaticProblem& P, const Node& n, double h) {  // (2.108)
+Node step_midpoint_explicit(const Stretch& X, const Node& n, double s, double h) {  // (2.108)
   const SO3& R = n.g.rotation();
-  const Slope k1 = slope(P, R, n.Lambda);
+  const Slope k1 = X.slope(R, n.Lambda, s);
   const Vector6 Theta2 = 0.5 * h * k1.xi;
-  const Slope k2 = slope(P, rotate(R, Theta2), n.Lambda + 0.5 * h * k1.dLambda);
+  const Slope k2 = X.slope(rotate(R, Theta2), n.Lambda + 0.5 * h * k1.dLambda, s + 0.5 * h);
+  X.add_length(h, s + 0.5 * h, k2.xi);
   return {n.g * SE3::exp(h * k2.xi), n.Lambda + h * k2.dLambda};
 }
 
-Node step_rk4(const StaticProblem& P, const Node& n, double h) {  // classical RK4, Munthe-Kaas
+Node step_rk4(const Stretch& X, const Node& n, double s, double h) {  // classical RK4, Munthe-Kaas
   const SO3& R = n.g.rotation();
-  const Slope s1 = slope(P, R, n.Lambda);
+  const double sm = s + 0.5 * h;
+  const Slope s1 = X.slope(R, n.Lambda, s);
   const Vector6 K1 = h * s1.xi, L1 = h * s1.dLambda;
   const Vector6 T2 = 0.5 * K1;
-  const Slope s2 = slope(P, rotate(R, T2), n.Lambda + 0.5 * L1);
+  const Slope s2 = X.slope(rotate(R, T2), n.Lambda + 0.5 * L1, sm);
   const Vector6 K2 = dexp_inv_neg_q2(T2, h * s2.xi), L2 = h * s2.dLambda;
   const Vector6 T3 = 0.5 * K2;
-  const Slope s3 = slope(P, rotate(R, T3), n.Lambda + 0.5 * L2);
+  const Slope s3 = X.slope(rotate(R, T3), n.Lambda + 0.5 * L2, sm);
   const Vector6 K3 = dexp_inv_neg_q2(T3, h * s3.xi), L3 = h * s3.dLambda;
-  const Slope s4 = slope(P, rotate(R, K3), n.Lambda + L3);
+  const Slope s4 = X.slope(rotate(R, K3), n.Lambda + L3, s + h);
   const Vector6 K4 = dexp_inv_neg_q2(K3, h * s4.xi), L4 = h * s4.dLambda;
+  if (X.lengths) {
+    X.add_length(h / 6.0, s, s1.xi);
+    X.add_length(h / 3.0, sm, s2.xi);
+    X.add_length(h / 3.0, sm, s3.xi);
+    X.add_length(h / 6.0, s + h, s4.xi);
+  }
   const Vector6 Theta = (K1 + 2.0 * K2 + 2.0 * K3 + K4) / 6.0;
   return {n.g * SE3::exp(Theta), n.Lambda + (L1 + 2.0 * L2 + 2.0 * L3 + L4) / 6.0};
 }
@@ -64,20 +95,18 @@ Node step_rk4(const StaticProblem& P, const Node& n, double h) {  // classical R
 /// Implicit midpoint (2.109), (2.91)-(2.92): Lambda_m = (Lambda_i + y)/2, Theta = h xi(Lambda_m),
 /// G = y - Lambda_i - h f(R_i exp(Theta/2), Lambda_m), g_{i+1} = g_i exp(Theta).
 template <bool Midpoint>
-bool step_implicit(const StaticProblem& P, const Node& n, double h, Node& next) {
+bool step_implicit(const Stretch& X, const Node& n, double s, double h, Node& next) {
   const SO3& R = n.g.rotation();
-  const Vector6& scale = P.wrench_scale();
+  const Vector6& scale = X.P.wrench_scale();
+  const double s_eval = Midpoint ? s + 0.5 * h : s + h;
+  auto state = [&](const Vector6& y) { return Midpoint ? Vector6(0.5 * (n.Lambda + y)) : y; };
   auto residual = [&](const Vector6& y) -> Vector6 {
-    if constexpr (Midpoint) {
-      const Vector6 Lm = 0.5 * (n.Lambda + y);
-      const Slope k = slope(P, rotate(R, 0.5 * h * P.strain(Lm)), Lm);
-      return (y - n.Lambda - h * k.dLambda).cwiseQuotient(scale);
-    } else {
-      const Slope k = slope(P, rotate(R, h * P.strain(y)), y);
-      return (y - n.Lambda - h * k.dLambda).cwiseQuotient(scale);
-    }
+    const Vector6 Ls = state(y);
+    const Vector6 xi = X.strain(Ls, s_eval);
+    const SO3 Rs = rotate(R, (Midpoint ? 0.5 * h : h) * xi);
+    return (y - n.Lambda - h * X.P.wrench_derivative(Rs, xi, Ls)).cwiseQuotient(scale);
   };
-  Vector6 y = n.Lambda + h * slope(P, R, n.Lambda).dLambda;  // explicit Euler predictor
+  Vector6 y = n.Lambda + h * X.slope(R, n.Lambda, s).dLambda;  // explicit Euler predictor
   Vector6 G = residual(y);
   Eigen::PartialPivLU<Matrix6> lu;
   bool have_jacobian = false;
@@ -103,9 +132,22 @@ bool step_implicit(const StaticProblem& P, const Node& n, double h, Node& next) 
     previous = norm;
   }
   if (!(previous <= 1e-11)) return false;
-  const Vector6 Theta = Midpoint ? Vector6(h * P.strain(0.5 * (n.Lambda + y))) : Vector6(h * P.strain(y));
-  next = {n.g * SE3::exp(Theta), y};
+  const Vector6 Ls = state(y);
+  const Vector6 xi = X.strain(Ls, s_eval);
+  X.add_length(h, s_eval, xi);
+  next = {n.g * SE3::exp(h * xi), y};
   return true;
+}
+
+bool advance(const Stretch& X, RkmkMethod method, Node& node, double s, double h) {
+  switch (method) {
+    case RkmkMethod::euler_explicit: node = step_euler_explicit(X, node, s, h); return true;
+    case RkmkMethod::midpoint_explicit: node = step_midpoint_explicit(X, node, s, h); return true;
+    case RkmkMethod::rk4: node = step_rk4(X, node, s, h); return true;
+    case RkmkMethod::euler_implicit: return step_implicit<false>(X, node, s, h, node);
+    case RkmkMethod::midpoint_implicit: return step_implicit<true>(X, node, s, h, node);
+  }
+  return false;
 }
 
 }  // namespace
@@ -123,22 +165,42 @@ int order(RkmkMethod method) {
 
 ShootResult shoot(const StaticProblem& problem, RkmkMethod method, int nodes, const Vector6& Lambda0,
                   std::span<Node> path) {
-  const double h = problem.length() / (nodes - 1);
+  const double L = problem.length();
+  const double h = L / (nodes - 1);
+  const auto& breaks = problem.breakpoints();
+  ShootResult out;
+  auto* lengths = problem.tracks_lengths() ? &out.lengths : nullptr;
   Node node{problem.base(), Lambda0};
   if (!path.empty()) path[0] = node;
+  std::size_t next_break = 0;
   for (int i = 1; i < nodes; ++i) {
-    bool ok = true;
-    switch (method) {
-      case RkmkMethod::euler_explicit: node = step_euler_explicit(problem, node, h); break;
-      case RkmkMethod::midpoint_explicit: node = step_midpoint_explicit(problem, node, h); break;
-      case RkmkMethod::rk4: node = step_rk4(problem, node, h); break;
-      case RkmkMethod::euler_implicit: ok = step_implicit<false>(problem, node, h, node); break;
-      case RkmkMethod::midpoint_implicit: ok = step_implicit<true>(problem, node, h, node); break;
+    double s = (i - 1) * h;
+    const double s_end = i == nodes - 1 ? L : i * h;
+    // Sub-steps between breakpoints: the integrand is smooth on each.
+    while (s < s_end) {
+      double b = s_end;
+      if (next_break < breaks.size() && breaks[next_break] < s_end) b = breaks[next_break];
+      const Stretch X{problem, problem.has_actuators() ? problem.active_mask(0.5 * (s + b)) : 0U,
+                      lengths, s, b};
+      if (!advance(X, method, node, s, b - s) || !node.Lambda.allFinite()) {
+        out.tip = node;
+        out.ok = false;
+        return out;
+      }
+      s = b;
+      if (b < s_end || (next_break < breaks.size() && breaks[next_break] == b)) {
+        // Crossing a breakpoint: cables entering here add their pull (strain continuous).
+        const auto left = problem.active_mask(b - 1e-12 * L);
+        const Vector6 xi_left = left ? problem.strain(node.Lambda, b, left) : problem.strain(node.Lambda);
+        node.Lambda += problem.entry_jump(b, xi_left);
+        ++next_break;
+      }
     }
-    if (!ok || !node.Lambda.allFinite()) return {node, false};
     if (!path.empty()) path[i] = node;
   }
-  return {node, node.g.translation().allFinite()};
+  out.tip = node;
+  out.ok = node.g.translation().allFinite();
+  return out;
 }
 
 }  // namespace rodlab::solvers::statics

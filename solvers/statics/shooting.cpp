@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "rodlab/solvers/common/newton.hpp"
+#include "rodlab/solvers/statics/continuation.hpp"
 #include "rodlab/solvers/statics/result_builder.hpp"
 
 namespace rodlab::solvers::statics {
@@ -12,59 +13,89 @@ namespace {
 using Eigen::VectorXd;
 
 /// (2.34) marched back from the tip along the undeformed rod (xi = xi*) with classical RK4:
-/// the internal wrench of the unloaded geometry in equilibrium with the loads.
-Vector6 march_back_undeformed(const StaticProblem& P, int steps) {
+/// the internal wrench of the unloaded geometry in equilibrium with the loads. Actuator forces
+/// are internal, so they enter only where a cable is pulled from outside (entry jumps).
+/// Lambda is recorded at the ascending arclengths `samples` (steps are split there) into `out`.
+void march_back_undeformed(const StaticProblem& P, int steps, std::span<const double> samples,
+                           std::span<Vector6> out) {
   const Vector6& xi = P.model().xi_star();
   const double L = P.length(), h = L / steps;
   auto rotation_at = [&](double s) { return P.base().rotation() * SO3::exp(s * xi.head<3>()); };
   auto f = [&](double s, const Vector6& Lambda) { return P.wrench_derivative(rotation_at(s), xi, Lambda); };
-  Vector6 Lambda = P.tip_load(rotation_at(L));
-  for (int i = steps; i > 0; --i) {
-    const double s = i * h;
+  auto rk4_back = [&](double s, double dh, Vector6& Lambda) {
     const Vector6 k1 = f(s, Lambda);
-    const Vector6 k2 = f(s - 0.5 * h, Lambda - 0.5 * h * k1);
-    const Vector6 k3 = f(s - 0.5 * h, Lambda - 0.5 * h * k2);
-    const Vector6 k4 = f(s - h, Lambda - h * k3);
-    Lambda -= h * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0;
+    const Vector6 k2 = f(s - 0.5 * dh, Lambda - 0.5 * dh * k1);
+    const Vector6 k3 = f(s - 0.5 * dh, Lambda - 0.5 * dh * k2);
+    const Vector6 k4 = f(s - dh, Lambda - dh * k3);
+    Lambda -= dh * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0;
+  };
+  const auto& breaks = P.breakpoints();
+  int next_break = static_cast<int>(breaks.size()) - 1;
+  Vector6 Lambda = P.tip_load(rotation_at(L));
+  int next_sample = static_cast<int>(samples.size()) - 1;
+  auto record = [&](double s) {
+    for (; next_sample >= 0 && samples[next_sample] >= s; --next_sample) out[next_sample] = Lambda;
+  };
+  record(L);
+  for (int i = steps; i > 0; --i) {
+    double s = i * h;
+    const double s_end = (i - 1) * h;
+    while (s > s_end) {
+      double b = (next_break >= 0 && breaks[next_break] > s_end) ? breaks[next_break] : s_end;
+      if (next_sample >= 0 && samples[next_sample] > b) b = samples[next_sample];
+      rk4_back(s, s - b, Lambda);
+      s = b;
+      if (next_break >= 0 && breaks[next_break] == b) {
+        Lambda -= P.entry_jump(b, xi);
+        --next_break;
+      }
+      record(s);
+    }
   }
-  return Lambda;
 }
 
 class ShootingSolver {
  public:
   ShootingSolver(const StaticProblem& problem, RkmkMethod method, const ShootingOptions& options)
-      : P_(problem), method_(method), options_(options) {}
+      : P_(problem), method_(method), options_(options), extra_(problem.extra_unknowns()) {}
 
-  /// Newton on the scaled Lambda(0) at one load factor.
-  NewtonResult solve_at(double load_factor, const Vector6& Lambda0_guess) {
+  /// Newton on x = [Lambda(0) / wrench_scale; extra unknowns] at one load factor; the residual
+  /// is [tip conditions; actuator length conditions].
+  NewtonResult solve_at(double load_factor, const VectorXd& guess) {
     P_.set_load_factor(load_factor);
-    const Vector6 scale = P_.wrench_scale();
     Residual F = [&](const VectorXd& x, VectorXd& r) {
-      const auto end = shoot(P_, method_, options_.nodes, Vector6(x.cwiseProduct(scale)));
+      set_state(x);
+      const auto end = shoot(P_, method_, options_.nodes, base_wrench(x));
       if (!end.ok) return false;
-      r = P_.tip_residual(end.tip.g, end.tip.Lambda);
+      r.resize(6 + extra_);
+      r.head<6>() = P_.tip_residual(end.tip.g, end.tip.Lambda);
+      if (extra_) P_.extra_residuals(end.lengths, std::span<double>(r.data() + 6, extra_));
       return true;
     };
     NewtonOptions newton;
     newton.tol = options_.tol;
     newton.max_iterations = options_.max_iterations;
-    auto result = solve_newton(F, VectorXd(Lambda0_guess.cwiseQuotient(scale)), newton);
+    auto result = solve_newton(F, guess, newton);
     iterations_ += result.iterations;
     return result;
   }
 
-  Vector6 unscale(const VectorXd& x) const { return x.cwiseProduct(P_.wrench_scale()); }
-
-  /// Initial guess at a load factor: the equilibrium of the undeformed rod (exact to first order
-  /// in the loads for a free tip; zero, the exact unloaded answer, for a clamped one).
-  Vector6 rigid_guess(double load_factor) {
+  /// Initial guess at a load factor: the equilibrium of the undeformed rod (exact to first
+  /// order in the loads for a free tip; zero, the exact unloaded answer, for a clamped one),
+  /// zero actuator forces and rest lengths.
+  VectorXd rigid_guess(double load_factor) {
     P_.set_load_factor(load_factor);
-    return rigid_base_wrench(P_, options_.nodes - 1);
+    VectorXd x(6 + extra_);
+    const auto z = P_.extra_initial_guess();
+    for (int j = 0; j < extra_; ++j) x[6 + j] = z[j];
+    P_.set_extra_unknowns(z);
+    x.head<6>() = rigid_base_wrench(P_, options_.nodes - 1).cwiseQuotient(P_.wrench_scale());
+    return x;
   }
 
   result::StaticResult run() {
     NewtonResult direct = solve_at(1.0, rigid_guess(1.0));
-    Vector6 Lambda0 = unscale(direct.x);
+    VectorXd x = direct.x;
     bool converged = direct.converged;
     std::string reason = direct.reason;
     double residual = direct.residual_norm;
@@ -72,7 +103,7 @@ class ShootingSolver {
       auto cont = continuation();
       converged = cont.converged;
       if (converged) {
-        Lambda0 = unscale(cont.x);
+        x = cont.state;
         residual = cont.residual_norm;
         reason.clear();
       } else {
@@ -80,8 +111,9 @@ class ShootingSolver {
       }
     }
     P_.set_load_factor(1.0);
+    set_state(x);
     std::vector<Node> path(options_.nodes);
-    shoot(P_, method_, options_.nodes, Lambda0, path);
+    shoot(P_, method_, options_.nodes, base_wrench(x), path);
     std::vector<double> s(options_.nodes);
     std::vector<SE3> g(options_.nodes);
     std::vector<Vector6> Lambda(options_.nodes);
@@ -97,53 +129,64 @@ class ShootingSolver {
     out.reason = reason;
     out.iterations = iterations_;
     out.residual_norm = residual;
+    check_cables_taut(out);
     return out;
   }
 
  private:
-  /// Walks the load factor from 0 (where Lambda(0) = 0 solves exactly) to 1, with a secant
-  /// predictor, growing the step after a success and halving it after a failure.
-  NewtonResult continuation() {
-    double lf = 0.0, lf_prev = 0.0, step = 0.25;
-    Vector6 x = Vector6::Zero(), x_prev = Vector6::Zero();
-    bool have_prev = false;
-    NewtonResult last;
-    for (int attempt = 0; attempt < 400 && lf < 1.0; ++attempt) {
-      const double target = std::min(1.0, lf + step);
-      Vector6 guess;
-      if (have_prev) guess = x + (x - x_prev) * ((target - lf) / (lf - lf_prev));
-      else guess = x + rigid_guess(target) - rigid_guess(lf);
-      last = solve_at(target, guess);
-      if (last.converged) {
-        x_prev = x;
-        lf_prev = lf;
-        x = unscale(last.x);
-        lf = target;
-        have_prev = true;
-        step = std::min(1.5 * step, 0.5);
-      } else {
-        step *= 0.5;
-        if (step < 1e-4) {
-          last.reason = "stalled at load factor " + std::to_string(lf) + " (" + last.reason + ")";
-          return last;
-        }
+  /// A displacement-controlled cable that needs a negative tension would have to push: it goes
+  /// slack instead, which this model does not represent. Report it rather than a false solution.
+  void check_cables_taut(result::StaticResult& out) const {
+    for (std::size_t k = 0; k < P_.actuators().size(); ++k) {
+      const auto& a = P_.actuators()[k];
+      if (a.kind != ActuatorKind::cable || !a.target_length) continue;
+      const double T = P_.axial_force(static_cast<int>(k));
+      if (T < 0.0 && out.converged) {
+        out.converged = false;
+        out.reason = "cable " + std::to_string(k) + " would need a compressive force (" +
+                     std::to_string(T) + " N) to reach its displacement: it goes slack";
       }
     }
-    if (lf < 1.0) last.converged = false;
-    return last;
+  }
+
+  Vector6 base_wrench(const VectorXd& x) const { return x.head<6>().cwiseProduct(P_.wrench_scale()); }
+  void set_state(const VectorXd& x) {
+    if (extra_) P_.set_extra_unknowns(std::span<const double>(x.data() + 6, extra_));
+  }
+
+  /// Walks the load factor from 0 (where the rigid guess solves exactly) to 1 (continuation.hpp);
+  /// the first step is predicted by the change of the rigid guess.
+  ContinuationResult continuation() {
+    Continuation walk;
+    walk.correct = [this](double lf, const VectorXd& guess) {
+      const NewtonResult r = solve_at(lf, guess);
+      return CorrectorResult{r.converged, r.x, r.residual_norm, r.reason};
+    };
+    walk.first_predictor = [this](double from, double to, const VectorXd& x) {
+      return VectorXd(x + rigid_guess(to) - rigid_guess(from));
+    };
+    return continue_load(walk, rigid_guess(0.0));
   }
 
   StaticProblem P_;
   RkmkMethod method_;
   ShootingOptions options_;
+  int extra_;
   int iterations_ = 0;
 };
 
 }  // namespace
 
 Vector6 rigid_base_wrench(const StaticProblem& problem, int steps) {
-  if (problem.tip_clamped()) return Vector6::Zero();
-  return march_back_undeformed(problem, std::max(steps, 4));
+  const double base = 0.0;
+  return rigid_wrench_profile(problem, std::span<const double>(&base, 1), steps).front();
+}
+
+std::vector<Vector6> rigid_wrench_profile(const StaticProblem& problem, std::span<const double> s,
+                                          int steps) {
+  std::vector<Vector6> Lambda(s.size(), Vector6::Zero());
+  if (!problem.tip_clamped()) march_back_undeformed(problem, std::max(steps, 4), s, Lambda);
+  return Lambda;
 }
 
 result::StaticResult solve_shooting(const StaticProblem& problem, RkmkMethod method,

@@ -1,10 +1,64 @@
 #include "rodlab/solvers/statics/static_problem.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <variant>
 
+#include <Eigen/LU>
+
 namespace rodlab::solvers::statics {
+namespace {
+
+using Matrix6 = lie::Matrix6;
+
+/// Ad_{T^-1} for T a translation by r: [I 0; -hat(r) I].
+/// K_mus = Ad^T diag(K_a) Ad maps a body strain change to the muscle's wrench about the centroid.
+Matrix6 transported_stiffness(const Vector6& Ka, const Vector3& r) {
+  Matrix6 Ad = Matrix6::Identity();
+  Ad.bottomLeftCorner<3, 3>() = -lie::so3::hat(r);
+  return Ad.transpose() * Ka.asDiagonal() * Ad;
+}
+
+loads::TendonPath tendon_path(const scene::Offset& offset, const std::optional<scene::Span>& span,
+                              double length) {
+  return loads::TendonPath(offset.points, span ? span->s0 : 0.0, span ? span->s1 : length);
+}
+
+ActuatorTerm actuator_term(const StaticProblem& problem, const scene::Actuator& actuator, double t) {
+  const double L = problem.length();
+  struct Convert {
+    double t, L;
+    ActuatorTerm operator()(const scene::Cable& c) const {
+      ActuatorTerm a{ActuatorKind::cable, tendon_path(c.offset, c.span, L)};
+      if (c.tension) a.input = c.tension->at(t);
+      if (c.displacement) a.input = c.displacement->at(t), a.target_length = 0.0;  // set below
+      return a;
+    }
+    ActuatorTerm operator()(const scene::Fluidic& f) const {
+      ActuatorTerm a{ActuatorKind::fluidic, tendon_path(f.offset, f.span, L)};
+      a.chamber_area = std::numbers::pi * f.chamber_radius * f.chamber_radius;
+      if (f.pressure) a.input = f.pressure->at(t);
+      if (f.volume) a.input = f.volume->at(t), a.target_length = 0.0;  // set below
+      return a;
+    }
+    ActuatorTerm operator()(const scene::Muscle& m) const {
+      ActuatorTerm a{ActuatorKind::muscle, tendon_path(m.offset, m.span, L)};
+      a.input = m.input.at(t);
+      a.law = loads::make_muscle_law(m.law.type, m.law.gain, m.law.stiffness);
+      const auto p = rod::properties(m.section);
+      const auto& e = m.material;
+      a.embedded_stiffness << e.E * p.Ix, e.E * p.Iy, e.G * p.Jt, e.G * p.A, e.G * p.A, e.E * p.A;
+      return a;
+    }
+  };
+  ActuatorTerm term = std::visit(Convert{t, L}, actuator);
+  (void)problem;
+  return term;
+}
+
+}  // namespace
 
 StaticProblem::StaticProblem(rod::RodModel model, SE3 base)
     : model_(std::move(model)), base_(base) {
@@ -38,9 +92,7 @@ StaticProblem StaticProblem::from_scene(const scene::Scene& scene, double t) {
                                                              : loads::WrenchFrame::body;
     problem.set_distributed(w);
   }
-  if (!scene.actuators.empty())
-    throw std::invalid_argument(
-        "actuators (cable, fluidic, muscle) are not supported by the statics solvers yet");
+  for (const auto& actuator : scene.actuators) problem.add_actuator(actuator_term(problem, actuator, t));
   return problem;
 }
 
@@ -59,6 +111,152 @@ Vector6 StaticProblem::tip_residual(const SE3& g_tip, const Vector6& Lambda_tip)
   }
   const Vector6 W = tip_wrench_.body_wrench(g_tip.rotation(), load_factor_);
   return (Lambda_tip - W).cwiseQuotient(wrench_scale_);
+}
+
+}  // namespace rodlab::solvers::statics
+
+namespace rodlab::solvers::statics {
+
+void StaticProblem::add_actuator(ActuatorTerm term) {
+  if (static_cast<int>(actuators_.size()) >= kMaxActuators)
+    throw std::invalid_argument("at most " + std::to_string(kMaxActuators) + " actuators");
+  if (term.path.s0() < 0.0 || term.path.s1() > length())
+    throw std::invalid_argument("actuator span outside [0, L]");
+  // Rest length: composite Simpson of |u(xi*)| over the span (u is piecewise smooth between
+  // routing knots, so integrate knot to knot).
+  std::vector<double> cuts{term.path.s0()};
+  for (double k : term.path.knots()) cuts.push_back(k);
+  cuts.push_back(term.path.s1());
+  double rest = 0.0;
+  for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+    const int n = 200;  // even
+    const double a = cuts[c], h = (cuts[c + 1] - a) / n;
+    double sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+      const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+      // evaluate just inside the segment at its ends, where r' is the segment's slope
+      const double si = std::clamp(a + i * h, a + 1e-12 * h, cuts[c + 1] - 1e-12 * h);
+      sum += w * term.path.length_rate(si, model_.xi_star());
+    }
+    rest += sum * h / 3.0;
+  }
+  term.rest_length = rest;
+  // Length control: the input is a displacement (cable pulled in) or a volume (chamber).
+  if (term.target_length) {
+    term.target_length = term.kind == ActuatorKind::cable ? rest - term.input
+                                                          : term.input / term.chamber_area;
+  }
+  actuators_.push_back(std::move(term));
+  const ActuatorTerm& a = actuators_.back();
+  unknown_value_.push_back(a.kind == ActuatorKind::muscle ? a.rest_length : 0.0);
+  if (a.has_unknown()) ++extra_count_;
+  for (double b : {a.path.s0(), a.path.s1()})
+    if (b > 0.0 && b < length()) breakpoints_.push_back(b);
+  for (double k : a.path.knots()) breakpoints_.push_back(k);
+  std::sort(breakpoints_.begin(), breakpoints_.end());
+  breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
+}
+
+StaticProblem::Mask StaticProblem::active_mask(double s_mid) const {
+  Mask mask = 0;
+  for (std::size_t k = 0; k < actuators_.size(); ++k)
+    if (actuators_[k].path.active(s_mid)) mask |= Mask{1} << k;
+  return mask;
+}
+
+double StaticProblem::axial_force(int k) const {
+  const ActuatorTerm& a = actuators_[k];
+  switch (a.kind) {
+    case ActuatorKind::cable:
+      return a.target_length ? unknown_value_[k] : load_factor_ * a.input;
+    case ActuatorKind::fluidic:
+      return a.target_length ? unknown_value_[k] : -load_factor_ * a.input * a.chamber_area;
+    case ActuatorKind::muscle:
+      return a.law->force(load_factor_ * a.input, unknown_value_[k], a.rest_length);
+  }
+  return 0.0;
+}
+
+void StaticProblem::set_extra_unknowns(std::span<const double> z) {
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < actuators_.size(); ++k) {
+    if (!actuators_[k].has_unknown()) continue;
+    const bool is_length = actuators_[k].kind == ActuatorKind::muscle;
+    unknown_value_[k] = z[j++] * (is_length ? length() : wrench_scale_[3]);
+  }
+}
+
+std::vector<double> StaticProblem::extra_initial_guess() const {
+  std::vector<double> z;
+  for (const auto& a : actuators_)
+    if (a.has_unknown()) z.push_back(a.kind == ActuatorKind::muscle ? a.rest_length / length() : 0.0);
+  return z;
+}
+
+void StaticProblem::extra_residuals(std::span<const double> lengths, std::span<double> out) const {
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < actuators_.size(); ++k) {
+    const ActuatorTerm& a = actuators_[k];
+    if (!a.has_unknown()) continue;
+    const double target = a.kind == ActuatorKind::muscle
+                              ? unknown_value_[k]  // (2.67): Delta_guess = integrated length
+                              : a.rest_length + load_factor_ * (*a.target_length - a.rest_length);
+    out[j++] = (lengths[k] - target) / length();
+  }
+}
+
+Vector6 StaticProblem::entry_jump(double b, const Vector6& xi_left) const {
+  Vector6 jump = Vector6::Zero();
+  for (std::size_t k = 0; k < actuators_.size(); ++k) {
+    const ActuatorTerm& a = actuators_[k];
+    if (a.enters_from_outside() && a.path.s0() == b && b > 0.0)
+      jump += axial_force(static_cast<int>(k)) * a.path.unit_wrench(b, xi_left);
+  }
+  return jump;
+}
+
+Vector6 StaticProblem::strain(const Vector6& Lambda, double s, Mask mask) const {
+  if (mask == 0) return strain(Lambda);
+  const Vector6& xs = model_.xi_star();
+  Matrix6 Kt = model_.K_diag().asDiagonal();
+  for (std::size_t k = 0; k < actuators_.size(); ++k)
+    if ((mask >> k) & 1U && actuators_[k].kind == ActuatorKind::muscle)
+      Kt += transported_stiffness(actuators_[k].embedded_stiffness, actuators_[k].path.offset(s));
+  const bool kirchhoff = model_.is_kirchhoff();
+  auto residual_and_jacobian = [&](const Vector6& xi, Vector6& r, Matrix6& J) {
+    r = Kt * (xi - xs) - Lambda;
+    J = Kt;
+    for (std::size_t k = 0; k < actuators_.size(); ++k) {
+      if (!((mask >> k) & 1U)) continue;
+      const double F = axial_force(static_cast<int>(k));
+      r += F * actuators_[k].path.unit_wrench(s, xi);
+      J += F * actuators_[k].path.unit_wrench_jacobian(s, xi);
+    }
+  };
+  Vector6 xi = xs, r;
+  Matrix6 J;
+  for (int it = 0; it < 30; ++it) {
+    residual_and_jacobian(xi, r, J);
+    Vector6 dxi = Vector6::Zero();
+    if (kirchhoff) dxi.head<3>() = -J.topLeftCorner<3, 3>().partialPivLu().solve(Vector3(r.head<3>()));
+    else dxi = -J.partialPivLu().solve(r);
+    xi += dxi;
+    if (!xi.allFinite()) break;
+    if (dxi.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + (xi - xs).lpNorm<Eigen::Infinity>())) break;
+  }
+  return xi;
+}
+
+Vector6 StaticProblem::rod_wrench(const Vector6& Lambda, const Vector6& xi, double s, Mask mask) const {
+  Vector6 W = Lambda;
+  for (std::size_t k = 0; k < actuators_.size(); ++k) {
+    if (!((mask >> k) & 1U)) continue;
+    const ActuatorTerm& a = actuators_[k];
+    W -= axial_force(static_cast<int>(k)) * a.path.unit_wrench(s, xi);
+    if (a.kind == ActuatorKind::muscle)
+      W -= transported_stiffness(a.embedded_stiffness, a.path.offset(s)) * (xi - model_.xi_star());
+  }
+  return W;
 }
 
 }  // namespace rodlab::solvers::statics

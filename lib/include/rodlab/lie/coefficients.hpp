@@ -129,7 +129,9 @@ inline constexpr double kCSwitch = 1.0;        // c(t): 12 terms, truncation < 1
 inline constexpr double kDSwitch = 4.0;        // d1, d2: 18 terms, truncation < 1e-22 at t = 4
 inline constexpr double kESwitch = 2.0;        // e(t): 22 terms (ratio (t/2pi)^2 = 0.1 at t = 2)
 inline constexpr double kFSwitch = 4.0;        // f(t): 50 terms (ratio 0.41 at t = 4, tail < 1e-18)
-inline constexpr std::array<double, 5> kSwitchPoints{kSincSwitch, kCSwitch, kDSwitch, kESwitch,
+/// SO3::exp evaluates cos_sinc at half the angle: its switch sits at |omega| = 2 kCosSincSwitch.
+inline constexpr double kCosSincSwitch = 0.25;
+inline constexpr std::array<double, 6> kSwitchPoints{kSincSwitch, 2.0 * kCosSincSwitch, kCSwitch, kDSwitch, kESwitch,
                                                      kFSwitch};
 
 /// sin(t)/t, accurate for every t (direct division has no cancellation for t > 0).
@@ -146,7 +148,6 @@ inline double a(double t) { return sinc(t); }
 /// cos(t) and sin(t)/t together. Below kCosSincSwitch both come from their Taylor series
 /// (truncation below 1e-19 there), which is several times cheaper than libm's sin and cos;
 /// the stage rotations of Lie-group integrators are almost always this small.
-inline constexpr double kCosSincSwitch = 0.25;
 inline void cos_sinc(double t, double& cos_t, double& sinc_t) {
   if (std::abs(t) < kCosSincSwitch) {
     static constexpr auto sinc_series = [] {  // (-1)^k / (2k+1)!

@@ -5,6 +5,10 @@
 // the internal wrench by the same RK tableau. dexp^-1 is truncated at the order that keeps the
 // method's order (q >= p - 2): the identity for the Euler and midpoint methods, q = 2 for RK4.
 // One integration allocates nothing (fixed-size Eigen types; the optional path is pre-sized).
+// Steps are split at the problem's breakpoints (actuator span ends, routing knots), so the
+// integrand is smooth on every sub-step and the order is kept; a cable entering the rod at a
+// breakpoint adds its jump to Lambda there (StaticProblem::entry_jump).
+#include <array>
 #include <span>
 
 #include "rodlab/solvers/statics/static_problem.hpp"
@@ -28,6 +32,9 @@ struct Node {
 struct ShootResult {
   Node tip;
   bool ok = true;
+  /// Path length of each actuator over its span, integrated with the method's own weights
+  /// (only when problem.tracks_lengths()).
+  std::array<double, StaticProblem::kMaxActuators> lengths{};
 };
 ShootResult shoot(const StaticProblem& problem, RkmkMethod method, int nodes,
                   const Vector6& Lambda0, std::span<Node> path = {});

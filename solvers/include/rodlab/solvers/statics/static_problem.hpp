@@ -14,14 +14,18 @@
 //
 // `load_factor` scales every load and moves a clamped tip's target along the geodesic from the
 // reference tip pose; the continuation of the solvers walks it from 0 to 1.
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "rodlab/lie/se3.hpp"
 #include "rodlab/loads/gravity.hpp"
 #include "rodlab/loads/point_wrench.hpp"
 #include "rodlab/rod/rod_model.hpp"
 #include "rodlab/scene/scene.hpp"
+#include "rodlab/solvers/statics/actuator_term.hpp"
 
 namespace rodlab::solvers::statics {
 
@@ -45,6 +49,8 @@ class StaticProblem {
   void set_distributed(const loads::DistributedWrench& w) { distributed_ = w; }
   void set_load_factor(double f) { load_factor_ = f; }
   void set_name(std::string name) { name_ = std::move(name); }
+  /// Adds an actuator (at most kMaxActuators); computes its rest length.
+  void add_actuator(ActuatorTerm term);
 
   // --- queries -------------------------------------------------------------------------
   const rod::RodModel& model() const { return model_; }
@@ -58,7 +64,40 @@ class StaticProblem {
   /// Reference (unloaded) pose of the tip, base * exp(L xi*).
   SE3 reference_tip() const { return base_ * SE3::exp(length() * model_.xi_star()); }
 
-  /// Strain from internal wrench: xi = xi* + K^-1 Lambda (Kirchhoff: nu = nu*).
+  // --- actuators ------------------------------------------------------------------------
+  static constexpr int kMaxActuators = 16;
+  using Mask = std::uint32_t;  ///< bit k: actuator k is active on the current stretch of s
+  const std::vector<ActuatorTerm>& actuators() const { return actuators_; }
+  bool has_actuators() const { return !actuators_.empty(); }
+  /// Actuators active on a stretch of s that contains s_mid and no breakpoint.
+  Mask active_mask(double s_mid) const;
+  /// Span ends and routing knots inside (0, L), sorted: where the integrators split steps.
+  const std::vector<double>& breakpoints() const { return breakpoints_; }
+  /// Axial force F of actuator k at the current load factor and unknowns.
+  double axial_force(int k) const;
+  /// Extra unknowns of the BVP (one per actuator with has_unknown()), scaled to O(1):
+  /// forces / (E I / L^2), muscle lengths / L.
+  int extra_unknowns() const { return extra_count_; }
+  void set_extra_unknowns(std::span<const double> z);
+  /// The unknowns' initial guess (zero force, Delta = Delta*), scaled.
+  std::vector<double> extra_initial_guess() const;
+  /// Residual of the extra conditions from the integrated path lengths (by actuator index),
+  /// made dimensionless by L.
+  void extra_residuals(std::span<const double> lengths, std::span<double> out) const;
+  /// Whether shooting must integrate path lengths (some actuator has an unknown).
+  bool tracks_lengths() const { return extra_count_ > 0; }
+  /// Jump of Lambda when crossing a breakpoint b forward with strain xi_left: cables entering
+  /// there are pulled from outside, so the strain is continuous and Lambda gains F c(xi).
+  Vector6 entry_jump(double b, const Vector6& xi_left) const;
+
+  /// Strain from internal wrench with the actuators in `mask` active:
+  /// K (xi - xi*) + sum_k [F_k c_k(xi) + K_mus,k (xi - xi*)] = Lambda, solved by Newton
+  /// (Kirchhoff: omega only, nu = nu*). Without actuators it is the closed form below.
+  Vector6 strain(const Vector6& Lambda, double s, Mask mask) const;
+  /// The rod's own internal wrench (without the actuators') at s.
+  Vector6 rod_wrench(const Vector6& Lambda, const Vector6& xi, double s, Mask mask) const;
+
+  /// Strain from internal wrench without actuators: xi = xi* + K^-1 Lambda (Kirchhoff: nu = nu*).
   Vector6 strain(const Vector6& Lambda) const {
     Vector6 xi = model_.xi_star() + model_.K_inv_diag().cwiseProduct(Lambda);
     if (model_.is_kirchhoff()) xi.tail<3>() = model_.xi_star().tail<3>();
@@ -102,6 +141,10 @@ class StaticProblem {
   std::optional<loads::DistributedWrench> distributed_;
   double load_factor_ = 1.0;
   Vector6 wrench_scale_;
+  std::vector<ActuatorTerm> actuators_;
+  std::vector<double> breakpoints_;
+  std::vector<double> unknown_value_;  ///< per actuator: its unknown (force or Delta), unscaled
+  int extra_count_ = 0;
 };
 
 }  // namespace rodlab::solvers::statics

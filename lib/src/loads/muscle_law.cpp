@@ -1,0 +1,12 @@
+#include "rodlab/loads/muscle_law.hpp"
+
+#include <stdexcept>
+
+namespace rodlab::loads {
+
+std::shared_ptr<const MuscleLaw> make_muscle_law(std::string_view type, double gain, double stiffness) {
+  if (type == "linear") return std::make_shared<LinearMuscleLaw>(gain, stiffness);
+  throw std::invalid_argument("unknown muscle law '" + std::string(type) + "' (valid: linear)");
+}
+
+}  // namespace rodlab::loads
