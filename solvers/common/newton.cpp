@@ -20,7 +20,9 @@ struct Evaluator {
   }
 };
 
-bool fd_jacobian(Evaluator& eval, const VectorXd& x, const VectorXd& Fx, double step, MatrixXd& J) {
+bool fd_jacobian(Evaluator& eval, const VectorXd& x, VectorXd Fx, double step, MatrixXd& J,
+                 bool own_base) {
+  if (own_base && !eval(x, Fx)) return false;  // a separate Jacobian residual needs its own F(x)
   const Eigen::Index n = x.size();
   J.resize(Fx.size(), n);
   VectorXd xp = x, Fp(Fx.size());
@@ -44,13 +46,15 @@ bool fd_jacobian(Evaluator& eval, const VectorXd& x, const VectorXd& Fx, double 
 NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& options) {
   NewtonResult out;
   Evaluator eval{F};
+  Evaluator jacobian_eval{options.jacobian_residual ? options.jacobian_residual : F};
+  const bool separate_jacobian = static_cast<bool>(options.jacobian_residual);
   out.x = std::move(x0);
   out.F.resize(out.x.size());
   auto finish = [&](bool converged, std::string reason) {
     out.converged = converged;
     out.reason = std::move(reason);
     out.residual_norm = out.F.size() ? out.F.lpNorm<Eigen::Infinity>() : 0.0;
-    out.evaluations = eval.count;
+    out.evaluations = eval.count + (separate_jacobian ? jacobian_eval.count : 0);
     return out;
   };
   if (!eval(out.x, out.F)) {
@@ -65,7 +69,8 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
   for (out.iterations = 0; out.iterations < options.max_iterations; ++out.iterations) {
     if (out.F.lpNorm<Eigen::Infinity>() <= options.tol) return finish(true, "");
     if (!have_J) {
-      if (!fd_jacobian(eval, out.x, out.F, options.fd_step, J))
+      Evaluator& je = separate_jacobian ? jacobian_eval : eval;
+      if (!fd_jacobian(je, out.x, out.F, options.fd_step, J, separate_jacobian))
         return finish(false, "the residual is not finite near the current iterate");
       have_J = J_is_fd = true;
     }

@@ -9,11 +9,17 @@
 
 namespace rodlab::solvers {
 
+/// F writes the residual for x and returns false when it cannot be evaluated (non-finite).
+using Residual = std::function<bool(const Eigen::VectorXd& x, Eigen::VectorXd& F)>;
+
 struct NewtonOptions {
   double tol = 1e-10;           ///< stop when |F|_inf <= tol
   int max_iterations = 50;
   double fd_step = 1e-7;        ///< relative forward-difference step (x is assumed O(1) scaled)
   bool broyden = true;          ///< rank-one updates between finite-difference Jacobians
+  /// Optional cheaper approximation of F used only for the finite-difference Jacobian (e.g. a
+  /// coarse discretisation of the same equations); Broyden updates then correct it.
+  Residual jacobian_residual;
 };
 
 struct NewtonResult {
@@ -24,9 +30,6 @@ struct NewtonResult {
   bool converged = false;
   std::string reason;           ///< why not, when not converged
 };
-
-/// F writes the residual for x and returns false when it cannot be evaluated (non-finite).
-using Residual = std::function<bool(const Eigen::VectorXd& x, Eigen::VectorXd& F)>;
 
 NewtonResult solve_newton(const Residual& F, Eigen::VectorXd x0, const NewtonOptions& options);
 
