@@ -12,7 +12,6 @@ namespace rodlab::cli {
 inline constexpr std::string_view kStudiesArrive = "the validation issue (#5)";
 
 /// The workspace sweep (`rodlab workspace`), built on the statics solvers.
-inline constexpr std::string_view kWorkspaceArrives = "the statics issue (#3)";
 
 /// Throws NotAvailable("not available yet; it arrives with <arrives>") unless `arrives` is
 /// empty. main.cpp prefixes "rodlab <command>: ".

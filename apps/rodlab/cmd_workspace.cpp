@@ -4,17 +4,24 @@
 #include <stdexcept>
 #include <string>
 
+#include <iostream>
+
+#include "rodlab/io/result_writer.hpp"
+#include "rodlab/solvers/statics/workspace.hpp"
+
 #include "availability.hpp"
 #include "command.hpp"
 #include "common_options.hpp"
 #include "errors.hpp"
+#include "exit_status.hpp"
+#include "format.hpp"
 
 namespace rodlab::cli {
 namespace {
 
 constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
 constexpr OptionSpec kSamplesOption{
-    "--samples", "K", "samples per actuator input over its limits, integer >= 2 (required)"};
+    "--samples", "K", "number of sampled input vectors, integer >= 2 (required)"};
 constexpr std::array<OptionSpec, 6> kOptions{kSamplesOption, kSchemeOption,  kNodesOption,
                                              kTolOption,     kOutFileOption, kSetOption};
 
@@ -30,11 +37,24 @@ int run(const Invocation& inv) {
     throw UsageError("the workspace samples actuator inputs, and " + options.scene_path +
                      " has no actuators");
   const StaticRun run = resolve_static_run(options, scene, "workspace");
-  require_available(kWorkspaceArrives);
   require_available(run.scheme);
-  // The sweep itself arrives with kWorkspaceArrives: sample, solve_static() each, deliver.
-  throw std::logic_error("the workspace sweep is marked available but not linked (" +
-                         std::to_string(*samples) + " samples)");
+  solvers::statics::StaticSolveOptions solve;
+  solve.scheme = std::string(run.scheme.name);
+  solve.nodes = run.nodes;
+  solve.tol = run.tol;
+  solve.max_iterations = run.max_iterations;
+  const auto result = solvers::statics::sample_workspace(scene, solve, static_cast<int>(*samples));
+  if (options.out) io::write_result(*options.out, result);
+  std::cout << "scene            " << result.scene << "\n"
+            << "scheme           " << result.scheme << ", " << result.nodes << " nodes\n"
+            << "samples          " << result.samples.size() << " (" << result.failed
+            << " did not converge), seed " << result.seed << "\n"
+            << "omega_bound      " << format_number(result.bounds.omega_bound) << " rad/m\n"
+            << "epsilon          [" << format_number(result.bounds.eps_low) << ", "
+            << format_number(result.bounds.eps_high) << "]\n"
+            << "wall time        " << format_number(result.wall_time_s) << " s\n";
+  if (options.out) std::cout << "result written to " << options.out->string() << '\n';
+  return result.failed == 0 ? kSolved : kNotConverged;
 }
 
 }  // namespace
@@ -44,9 +64,11 @@ const Command& workspace_command() {
       "workspace",
       "SCENE --samples K [options]",
       "sample the actuator inputs and map the reachable tip poses",
-      "Samples every actuator input over its limits (K samples each), solves the static\n"
-      "equilibrium for each combination with the statics scheme of --scheme or solver.scheme,\n"
-      "and collects the tip poses. The options and the scene are checked before anything runs.\n"
+      "Draws K input vectors uniformly within every actuator's `limits` (fixed seed), solves the\n"
+      "static equilibrium of each with the statics scheme of --scheme or solver.scheme, and fits\n"
+      "the constant-curvature workspace model (thesis 2.7.3): omega_bound, eps_low, eps_high.\n"
+      "--out writes the sampled tips and the bounds (rodlab.workspace-result/1, JSON or CSV).\n"
+      "The options and the scene are checked before anything runs.\n"
       "\n"
       "Exit status: 0 every sample converged; 1 some did not; 2 bad input or usage (nothing is\n"
       "written).\n",

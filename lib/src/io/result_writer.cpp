@@ -192,3 +192,55 @@ void write_result(const std::filesystem::path& path, const result::DynamicResult
 }
 
 }  // namespace rodlab::io
+
+namespace rodlab::io {
+
+std::string to_json(const result::WorkspaceResult& r) {
+  Json tips = Json::array();
+  for (const auto& sample : r.samples) {
+    tips.push_back(Json{{"inputs", sample.inputs},
+                        {"tip", vector_json(sample.tip)},
+                        {"omega", sample.coordinates.omega},
+                        {"phi", sample.coordinates.phi},
+                        {"epsilon", sample.coordinates.epsilon},
+                        {"converged", sample.converged}});
+  }
+  const Json json{{"schema", kWorkspaceResultSchema},
+                  {"scene", r.scene},
+                  {"scheme", r.scheme},
+                  {"nodes", r.nodes},
+                  {"length", r.length},
+                  {"seed", r.seed},
+                  {"samples", r.samples.size()},
+                  {"failed", r.failed},
+                  {"wall_time_s", r.wall_time_s},
+                  {"bounds", Json{{"omega_bound", r.bounds.omega_bound},
+                                  {"eps_low", r.bounds.eps_low},
+                                  {"eps_high", r.bounds.eps_high}}},
+                  {"tips", tips}};
+  return dump(json);
+}
+
+std::string to_csv(const result::WorkspaceResult& r) {
+  std::string out;
+  const std::size_t inputs = r.samples.empty() ? 0 : r.samples.front().inputs.size();
+  for (std::size_t k = 0; k < inputs; ++k) out += "input" + std::to_string(k) + ",";
+  out += "tip_x,tip_y,tip_z,omega,phi,epsilon,converged\n";
+  std::vector<double> row;
+  for (const auto& sample : r.samples) {
+    row = sample.inputs;
+    row.insert(row.end(), sample.tip.data(), sample.tip.data() + 3);
+    row.push_back(sample.coordinates.omega);
+    row.push_back(sample.coordinates.phi);
+    row.push_back(sample.coordinates.epsilon);
+    row.push_back(sample.converged ? 1.0 : 0.0);
+    append_row(out, row);
+  }
+  return out;
+}
+
+void write_result(const std::filesystem::path& path, const result::WorkspaceResult& result) {
+  write_result_impl(path, result);
+}
+
+}  // namespace rodlab::io

@@ -18,11 +18,13 @@
 
 #include "rodlab/result/dynamic_result.hpp"
 #include "rodlab/result/static_result.hpp"
+#include "rodlab/result/workspace_result.hpp"
 
 namespace rodlab::io {
 
 inline constexpr const char* kStaticResultSchema = "rodlab.static-result/1";
 inline constexpr const char* kDynamicResultSchema = "rodlab.dynamic-result/1";
+inline constexpr const char* kWorkspaceResultSchema = "rodlab.workspace-result/1";
 
 enum class ResultFormat { json, csv };
 
@@ -33,16 +35,23 @@ ResultFormat result_format(const std::filesystem::path& path);
 /// JSON text of a result (indented by 2, trailing newline).
 std::string to_json(const result::StaticResult& result);
 std::string to_json(const result::DynamicResult& result);
+/// Workspace: {"schema", "scene", "scheme", "nodes", "length", "seed", "samples": N, "failed",
+/// "wall_time_s", "bounds": {"omega_bound", "eps_low", "eps_high"},
+/// "tips": [{"inputs": [...], "tip": [x, y, z], "omega", "phi", "epsilon", "converged"}, ...]}
+std::string to_json(const result::WorkspaceResult& result);
 
 /// CSV text of a result. The dynamic writer throws std::invalid_argument when a series does
 /// not have one value per output time.
 std::string to_csv(const result::StaticResult& result);
 std::string to_csv(const result::DynamicResult& result);
+/// Workspace CSV: one row per sample: input0..inputK-1,tip_x,tip_y,tip_z,omega,phi,epsilon,converged
+std::string to_csv(const result::WorkspaceResult& result);
 
 /// Writes the result to `path`, JSON or CSV by extension, atomically. Throws
 /// std::invalid_argument for another extension (nothing is written) and std::system_error
 /// when the file cannot be written (nothing is left behind).
 void write_result(const std::filesystem::path& path, const result::StaticResult& result);
 void write_result(const std::filesystem::path& path, const result::DynamicResult& result);
+void write_result(const std::filesystem::path& path, const result::WorkspaceResult& result);
 
 }  // namespace rodlab::io
