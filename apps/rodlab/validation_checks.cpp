@@ -40,8 +40,9 @@ Check boolean_check(std::string name, bool ok, std::string reference, std::strin
 
 std::span<const CheckFamily> check_families() {
   // Add a family here (and its function in its own file).
-  static const std::array<CheckFamily, 1> families{{
+  static const std::array<CheckFamily, 2> families{{
       {"scenes", "example scenes load; derived quantities equal their closed forms", &scene_checks},
+      {"statics", "statics schemes on the thesis's 2.7 problems and closed forms", &statics_checks},
   }};
   return families;
 }

@@ -64,4 +64,8 @@ namespace rodlab::cli {
 /// estimate) equal their closed forms.
 std::vector<Check> scene_checks(const ValidationContext& context);
 
+/// validation_statics_checks.cpp: observed orders on the gravity cantilever, both ends fixed,
+/// closed forms (full circle, straight cable), reference agreement, structure drift.
+std::vector<Check> statics_checks(const ValidationContext& context);
+
 }  // namespace rodlab::cli
