@@ -309,3 +309,10 @@ BOOST_AUTO_TEST_CASE(the_latest_override_of_a_field_is_blamed) {
   BOOST_TEST_REQUIRE(d.size() == 1u);
   BOOST_TEST(d[0].source == "--set rod.length=0");
 }
+
+BOOST_AUTO_TEST_CASE(duplicate_key_in_an_overridden_value) {
+  const auto d = rejection(kGood, overrides({"rod.material={E: 1, G: 1, rho: 1, G: 2}"}));
+  BOOST_TEST_REQUIRE(d.size() == 1u);
+  BOOST_TEST(d[0].to_string() ==
+             "--set rod.material={E: 1, G: 1, rho: 1, G: 2}: rod.material.G: duplicate key");
+}

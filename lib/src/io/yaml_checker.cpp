@@ -138,10 +138,7 @@ void Checker::error(const YAML::Mark& mark, std::string_view path, std::string m
   SceneDiagnostic d;
   d.field = std::string(path);
   d.message = std::move(message);
-  // The latest override that covers the path is where the value came from.
-  const auto origin = std::find_if(origins_.rbegin(), origins_.rend(),
-                                   [&](const OverrideOrigin& o) { return within(path, o.path); });
-  if (origin != origins_.rend()) {
+  if (const OverrideOrigin* origin = origin_of(path)) {
     d.source = origin->source;
   } else {
     d.source = source_;
@@ -153,16 +150,24 @@ void Checker::error(const YAML::Mark& mark, std::string_view path, std::string m
   diagnostics_.push_back(std::move(d));
 }
 
+const OverrideOrigin* Checker::origin_of(std::string_view path) const {
+  // The latest override that covers the path is where the value came from.
+  const auto origin = std::find_if(origins_.rbegin(), origins_.rend(),
+                                   [&](const OverrideOrigin& o) { return within(path, o.path); });
+  return origin == origins_.rend() ? nullptr : &*origin;
+}
+
 Field Checker::root(const YAML::Node& node) { return {node, "", node.Mark(), node.Mark(), true}; }
 
 Field Checker::child(const Field& map, std::string_view key) {
   const std::string path = sub_path(map.path, key);
   if (map.exists && map.node.IsMap()) {
-    for (auto it = map.node.begin(); it != map.node.end(); ++it) {
-      if (it->first.IsScalar() && it->first.Scalar() == key) {
-        const YAML::Mark key_mark = it->first.Mark();
-        const YAML::Mark mark = it->second.IsNull() ? key_mark : it->second.Mark();
-        return {it->second, path, mark, key_mark, true};
+    // Range-for keeps each (key, value) alive; `it->first` would be a dangling temporary.
+    for (const auto& pair : map.node) {
+      if (pair.first.IsScalar() && pair.first.Scalar() == key) {
+        const YAML::Mark key_mark = pair.first.Mark();
+        const YAML::Mark mark = pair.second.IsNull() ? key_mark : pair.second.Mark();
+        return {pair.second, path, mark, key_mark, true};
       }
     }
   }
@@ -193,8 +198,8 @@ KeyCheck Checker::keys(const Field& map, std::initializer_list<std::string_view>
   result.map = true;
   if (map.node.IsNull()) return result;
   std::vector<std::pair<std::string, YAML::Mark>> seen;
-  for (auto it = map.node.begin(); it != map.node.end(); ++it) {
-    const YAML::Node& key = it->first;
+  for (const auto& pair : map.node) {
+    const YAML::Node& key = pair.first;
     if (!key.IsScalar()) {
       error(key.Mark(), map.path, "keys must be plain names (got " + describe(key) + ")");
       ++result.unknown;
@@ -205,10 +210,12 @@ KeyCheck Checker::keys(const Field& map, std::initializer_list<std::string_view>
     const auto first =
         std::find_if(seen.begin(), seen.end(), [&](const auto& s) { return s.first == name; });
     if (first != seen.end()) {
+      // Lines inside an override's VALUE would be misleading: say where only for the file.
+      const bool in_file = !first->second.is_null() && !origin_of(path);
       error(key.Mark(), path,
-            first->second.is_null() ? std::string("duplicate key")
-                                    : "duplicate key (first given at line " +
-                                          std::to_string(first->second.line + 1) + ")");
+            in_file ? "duplicate key (first given at line " +
+                          std::to_string(first->second.line + 1) + ")"
+                    : std::string("duplicate key"));
       continue;
     }
     seen.emplace_back(name, key.Mark());

@@ -155,6 +155,8 @@ class Checker {
   /// require() and at_least_one() do not report them missing as well.
   std::vector<std::string> suggested_;
   bool was_suggested(const std::string& path) const;
+  /// The override a field came from, or nullptr if it is the file's.
+  const OverrideOrigin* origin_of(std::string_view path) const;
   std::vector<SceneDiagnostic> diagnostics_;
 };
 
