@@ -79,7 +79,10 @@ class ShootingSolver {
     newton.max_iterations = options_.max_iterations;
     // The Jacobian of the continuous shooting map, approximated by a coarse RK4 integration
     // (about 10x cheaper than one fine integration per column); Broyden corrects the rest.
-    if (options_.nodes > 2 * kJacobianNodes) {
+    // Only for rk4: for the low-order methods the coarse Jacobian is far from their own
+    // discrete one, and the first Newton step can land in another equilibrium's basin (seen on
+    // the elastica with rkmk-euler-implicit at PL^2/EI = 10).
+    if (method_ == RkmkMethod::rk4 && options_.nodes > 2 * kJacobianNodes) {
       newton.jacobian_residual = [&](const VectorXd& x, VectorXd& r) {
         set_state(x);
         const auto end = shoot(P_, RkmkMethod::rk4, kJacobianNodes, base_wrench(x));

@@ -97,9 +97,14 @@ StaticProblem StaticProblem::from_scene(const scene::Scene& scene, double t) {
 }
 
 SE3 StaticProblem::tip_target() const {
-  const SE3 ref = reference_tip();
   if (load_factor_ == 1.0) return *tip_target_;
-  return ref * SE3::exp(load_factor_ * (ref.inverse() * *tip_target_).log());
+  // Continuation path: the tip of a rod of constant twist interpolated between xi* and the
+  // constant twist xi_eff that reaches the target, base exp(L xi_eff) = target. Every
+  // intermediate target is then reachable without stretch (an arc end for an arc target), unlike
+  // the SE(3) geodesic between the reference tip and the target.
+  const double L = length();
+  const Vector6 xi_eff = (base_.inverse() * *tip_target_).log() / L;
+  return base_ * SE3::exp(L * ((1.0 - load_factor_) * model_.xi_star() + load_factor_ * xi_eff));
 }
 
 Vector6 StaticProblem::tip_residual(const SE3& g_tip, const Vector6& Lambda_tip) const {

@@ -12,8 +12,9 @@
 // conditions (the thesis's xi-state form drops the internal force, which would leave a Kirchhoff
 // cantilever unbent by gravity).
 //
-// `load_factor` scales every load and moves a clamped tip's target along the geodesic from the
-// reference tip pose; the continuation of the solvers walks it from 0 to 1.
+// `load_factor` scales every load and moves a clamped tip's target from the reference tip pose
+// through the tips of constant-twist rods (twist interpolated from xi* to the one reaching the
+// target); the continuation of the solvers walks it from 0 to 1.
 #include <cstdint>
 #include <optional>
 #include <span>
