@@ -1,0 +1,284 @@
+#define BOOST_TEST_MODULE statics_constant_strain
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "schemes_under_test.hpp"
+#include "statics_support.hpp"
+
+// Closed-form solutions with constant strain (thesis 2.5, (2.68)-(2.80)), for every available
+// statics scheme and several N. With xi constant, g' = g hat(xi) integrates exactly to
+// g(s) = exp(s hat(xi)) (the thesis's (2.78), which it obtains from Taylor expansions of dexp, is
+// exact here), and every RKMK scheme reproduces it to rounding: the stages all see the same xi,
+// g_{i+1} = g_i exp(h xi), and the dexp^-1 corrections vanish because ad_xi xi = 0. A
+// collocation on the Lie algebra (theta(s) = s xi is linear) is exact too. Every scheme is held
+// to rounding level. The references below are closed forms (cos/sin) or an independent
+// long-double matrix exponential (statics_support.hpp), never rodlab::lie.
+//
+// Measured on the Table 2.1 rod, N in {5, 21, 100, 200}: worst node errors of the RKMK schemes
+// 1.0e-15 L (position) and 2.3e-15 (rotation) for the arcs and full circles (chebyshev and
+// kinsol: 4.3e-13 L), 4.3e-15 L and 3.8e-15 for torsion with extension. Tolerance
+// kPoseTol = 1e-12.
+
+namespace {
+
+using namespace rodlab;
+using namespace rodlab::testing::statics;
+using rod::ModelKind;
+using loads::WrenchFrame;
+
+constexpr double kPoseTol = 1e-12;   // node pose errors, |dp|/L and rotation distance
+constexpr double kTwistTol = 1e-10;  // relative error of the node twists (xi = xi* + K^-1 Lambda)
+const std::vector<int> kNodes{5, 21, 100, 200};  // spectral schemes: {5, 21} (grid_for)
+// The constant-twist loads start Newton away from the solution (the shooting's initial guess is
+// the straight rod), so the node errors are bounded by the Newton residual (default tolerance
+// 1e-12; a tighter one is below the rounding floor of the global collocation residuals, ~1e-13
+// at N = 200) times the sensitivity of the poses to Lambda(0) (~3): kConstantTwistTol = 5e-12.
+// Measured (RKMK): 2.3e-13 L (position), 4.0e-13 (rotation).
+constexpr double kConstantTwistTol = 5e-12;
+
+Matrix3 rot_x(double a) {
+  Matrix3 R;
+  R << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
+  return R;
+}
+Matrix3 rot_y(double a) {
+  Matrix3 R;
+  R << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);
+  return R;
+}
+Matrix3 rot_z(double a) {
+  Matrix3 R;
+  R << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1;
+  return R;
+}
+
+/// Worst node pose error of a result against a closed form pose(s) -> (R, p).
+template <class F>
+PoseError worst_node_error(const StaticResult& r, const F& closed_form) {
+  PoseError worst;
+  for (const auto& c : r.centerline) {
+    Matrix3 R;
+    Vector3 p;
+    closed_form(c.s, R, p);
+    worst.position = std::max(worst.position, (c.pose.translation() - p).norm() / Table21::L);
+    worst.rotation = std::max(worst.rotation, rotation_distance(c.pose.rotation_matrix(), R));
+  }
+  return worst;
+}
+
+double worst_twist_error(const StaticResult& r, const Vector6& xi) {
+  double worst = 0.0;
+  for (const auto& c : r.centerline) worst = std::max(worst, (c.twist - xi).norm() / xi.norm());
+  return worst;
+}
+
+}  // namespace
+
+// The model's K (2.28) against the Table 2.1 constants computed in the test helper.
+BOOST_AUTO_TEST_CASE(table21_stiffness) {
+  const auto m = table21_model();
+  const Vector6 K = m.K_diag();
+  const Vector6 expected =
+      (Vector6() << Table21::EI, Table21::EI, Table21::GJ, Table21::GA, Table21::GA, Table21::EA).finished();
+  for (int i = 0; i < 6; ++i) BOOST_TEST(K[i] == expected[i], boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(Table21::EI == 4.908738521234052e-4, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(Table21::GA == 25.918139392115794, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(!statics_scheme_names().empty());
+  for (const auto& s : statics_schemes_under_test())
+    BOOST_TEST_MESSAGE("scheme under test: " << s.name << " (order " << s.order << ")");
+}
+
+// Case 1: pure bending by a body-frame tip moment. Lambda = [M e; 0] is constant
+// (ad_xi^T Lambda = [m x w + f x v; f x w] = 0 for m || w, f = 0), so kappa = M / EI is constant.
+// About +x: R(s) = exp(s kappa hat(e_x)) = Rx(kappa s), p' = R e_z = (0, -sin ks, cos ks), so
+//   p(s) = (0, (cos(kappa s) - 1)/kappa, sin(kappa s)/kappa)
+// (the rod bends towards -y: hat(e_x) e_z = e_x x e_z = -e_y). About +y: R = Ry(kappa s),
+// p' = (sin ks, 0, cos ks), p(s) = ((1 - cos ks)/kappa, 0, sin ks / kappa).
+// kappa L = 2 pi: a full circle, tip back at the base with R = I.
+BOOST_AUTO_TEST_CASE(pure_bending_arcs_and_full_circle) {
+  struct Case {
+    const char* name;
+    int axis;           // 0: x, 1: y
+    double kappa_L;     // M L / (E I)
+  };
+  const std::vector<Case> cases{{"about +x, kappa L = 0.5", 0, 0.5},
+                                {"about -x, kappa L = -1.5", 0, -1.5},
+                                {"about +y, kappa L = 1", 1, 1.0},
+                                {"full circle about +x, kappa L = 2 pi", 0, 2.0 * Table21::pi},
+                                {"full circle about +y, kappa L = 2 pi", 1, 2.0 * Table21::pi}};
+  PoseError worst_all;
+  for (const ModelKind kind : {ModelKind::cosserat, ModelKind::kirchhoff}) {
+    for (const auto& c : cases) {
+      const double kappa = c.kappa_L / Table21::L, M = kappa * Table21::EI;
+      Vector3 m = Vector3::Zero();
+      m[c.axis] = M;
+      const auto problem = tip_wrench_problem(kind, wrench(m, Vector3::Zero()), WrenchFrame::body);
+      Vector6 xi = Vector6::Zero();
+      xi[c.axis] = kappa;
+      xi[5] = 1.0;
+      auto closed_form = [&](double s, Matrix3& R, Vector3& p) {
+        const double a = kappa * s;
+        if (c.axis == 0) {
+          R = rot_x(a);
+          p = Vector3(0.0, (std::cos(a) - 1.0) / kappa, std::sin(a) / kappa);
+        } else {
+          R = rot_y(a);
+          p = Vector3((1.0 - std::cos(a)) / kappa, 0.0, std::sin(a) / kappa);
+        }
+      };
+      for (const auto& scheme : statics_schemes_under_test()) {
+        for (const int N : grid_for(scheme, kNodes)) {
+          const auto r = solve(problem, scheme.name, N);
+          if (!check_result(r, N)) continue;
+          const PoseError e = worst_node_error(r, closed_form);
+          BOOST_TEST(e.position <= kPoseTol, kind_name(kind) << " " << c.name << " " << describe(r)
+                                                             << ": position error " << e.position);
+          BOOST_TEST(e.rotation <= kPoseTol, kind_name(kind) << " " << c.name << " " << describe(r)
+                                                             << ": rotation error " << e.rotation);
+          BOOST_TEST(worst_twist_error(r, xi) <= kTwistTol);
+          BOOST_TEST((r.base_wrench - wrench(m, Vector3::Zero())).norm() <= 1e-12 * std::abs(M));
+          worst_all.position = std::max(worst_all.position, e.position);
+          worst_all.rotation = std::max(worst_all.rotation, e.rotation);
+          if (c.kappa_L > 6.0) {
+            // Full circle: tip back at the base, identity rotation.
+            const auto& tip = r.centerline.back().pose;
+            BOOST_TEST(tip.translation().norm() / Table21::L <= kPoseTol);
+            BOOST_TEST(rotation_distance(tip.rotation_matrix(), Matrix3::Identity()) <= kPoseTol);
+            if (N == 100)
+              BOOST_TEST_MESSAGE("full circle " << kind_name(kind) << " " << describe(r)
+                                                << " |p_tip|/L = " << tip.translation().norm() / Table21::L);
+          }
+        }
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("pure bending, worst node error over schemes, N, cases: position "
+                     << worst_all.position << " L, rotation " << worst_all.rotation);
+}
+
+// Case 2: torsion with extension by a body tip wrench [0, 0, Mz, 0, 0, Fz]. Lambda is constant
+// (m || f || w || v || e_z), omega_z = Mz/(G Jt), nu_z = 1 + Fz/(E A); exp(s xi) with w || v is a
+// screw along z: R(s) = Rz(omega_z s), p(s) = (0, 0, nu_z s). Tip length L (1 + Fz/EA), tip
+// rotated by Mz L/(G Jt). Kirchhoff: nu_z = 1 (no extension), Fz is the constraint force.
+BOOST_AUTO_TEST_CASE(torsion_with_extension) {
+  const std::vector<std::pair<double, double>> loads{{1.0, 0.05}, {4.0, -0.1}, {-2.5, 0.2}};  // (Mz L/GJ, Fz/EA)
+  PoseError worst_all;
+  for (const ModelKind kind : {ModelKind::cosserat, ModelKind::kirchhoff}) {
+    for (const auto& [twist, strain] : loads) {
+      const double Mz = twist * Table21::GJ / Table21::L, Fz = strain * Table21::EA;
+      const double wz = Mz / Table21::GJ;
+      const double nuz = kind == ModelKind::kirchhoff ? 1.0 : 1.0 + Fz / Table21::EA;
+      const Vector6 W = wrench(Vector3(0, 0, Mz), Vector3(0, 0, Fz));
+      const auto problem = tip_wrench_problem(kind, W, WrenchFrame::body);
+      const Vector6 xi = (Vector6() << 0, 0, wz, 0, 0, nuz).finished();
+      auto closed_form = [&](double s, Matrix3& R, Vector3& p) {
+        R = rot_z(wz * s);
+        p = Vector3(0.0, 0.0, nuz * s);
+      };
+      for (const auto& scheme : statics_schemes_under_test()) {
+        for (const int N : grid_for(scheme, kNodes)) {
+          const auto r = solve(problem, scheme.name, N);
+          if (!check_result(r, N)) continue;
+          const PoseError e = worst_node_error(r, closed_form);
+          BOOST_TEST(e.max() <= kPoseTol, kind_name(kind) << " Mz L/GJ = " << twist << ", Fz/EA = " << strain
+                                                          << " " << describe(r) << ": node error " << e.max());
+          BOOST_TEST(worst_twist_error(r, xi) <= kTwistTol);
+          const Vector3 tip = r.centerline.back().pose.translation();
+          BOOST_TEST(std::abs(tip.z() - Table21::L * nuz) <= kPoseTol * Table21::L);
+          BOOST_TEST((r.base_wrench - W).norm() <= 1e-12 * W.norm());
+          worst_all.position = std::max(worst_all.position, e.position);
+          worst_all.rotation = std::max(worst_all.rotation, e.rotation);
+        }
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("torsion + extension, worst node error: position " << worst_all.position
+                                                                        << " L, rotation " << worst_all.rotation);
+}
+
+// Case 3: constant-twist loads (2.68)-(2.69). For a constant xi, Lambda = K (xi - xi*) is
+// constant, so (2.34) Lambda' = ad_xi^T Lambda - W_bar = 0 holds with the body-frame distributed
+// wrench W_bar = ad_xi^T K (xi - xi*) (2.68) and the free tip Lambda(L) = K (xi - xi*) (2.69);
+// then g(s) = exp(s hat(xi)). ad_xi is written out from (1.10) in the test (ad_matrix) and the
+// exponential is the long-double series (expm_reference).
+// Kirchhoff variant: nu = nu* and Lambda = [K_w w; f] with an arbitrary constant constraint
+// force f; W_bar = ad_xi^T Lambda.
+BOOST_AUTO_TEST_CASE(constant_twist_loads) {
+  const Vector6 K = (Vector6() << Table21::EI, Table21::EI, Table21::GJ, Table21::GA, Table21::GA, Table21::EA).finished();
+  const Vector6 xi_star = (Vector6() << 0, 0, 0, 0, 0, 1).finished();
+  struct Case {
+    ModelKind kind;
+    Vector6 xi;
+    Vector3 constraint_force;  // Kirchhoff only
+  };
+  const std::vector<Case> cases{
+      {ModelKind::cosserat, (Vector6() << 3.0, -2.0, 5.0, 0.002, -0.001, 1.003).finished(), Vector3::Zero()},
+      {ModelKind::cosserat, (Vector6() << 8.0, -5.0, 12.0, -0.004, 0.005, 0.995).finished(), Vector3::Zero()},
+      {ModelKind::kirchhoff, (Vector6() << 3.0, -2.0, 5.0, 0, 0, 1).finished(), Vector3(0.03, -0.02, 0.05)},
+      {ModelKind::kirchhoff, (Vector6() << 8.0, -5.0, 12.0, 0, 0, 1).finished(), Vector3(-0.1, 0.1, -0.2)},
+  };
+  PoseError worst_all;
+  for (const auto& c : cases) {
+    Vector6 Lambda = K.cwiseProduct(c.xi - xi_star);
+    if (c.kind == ModelKind::kirchhoff) Lambda.tail<3>() = c.constraint_force;
+    const Vector6 W_bar = ad_matrix(c.xi).transpose() * Lambda;  // (2.68)
+    StaticProblem problem = tip_wrench_problem(c.kind, Lambda, WrenchFrame::body);  // (2.69)
+    problem.set_distributed(loads::DistributedWrench{W_bar, WrenchFrame::body});
+    for (const auto& scheme : statics_schemes_under_test()) {
+      for (const int N : grid_for(scheme, kNodes)) {
+        const auto r = solve(problem, scheme.name, N);
+        if (!check_result(r, N)) continue;
+        PoseError e;
+        for (const auto& node : r.centerline) {
+          const PoseError en = pose_error(node.pose, expm_reference(node.s * c.xi));
+          e.position = std::max(e.position, en.position);
+          e.rotation = std::max(e.rotation, en.rotation);
+        }
+        BOOST_TEST(e.max() <= kConstantTwistTol, kind_name(c.kind) << " xi = " << c.xi.transpose() << " " << describe(r)
+                                                          << ": node error " << e.max());
+        BOOST_TEST(worst_twist_error(r, c.xi) <= kTwistTol, describe(r) << " twist error " << worst_twist_error(r, c.xi));
+        BOOST_TEST((r.base_wrench - Lambda).norm() <= 1e-9 * Lambda.norm(),
+                   describe(r) << " base wrench error " << (r.base_wrench - Lambda).norm() / Lambda.norm());
+        worst_all.position = std::max(worst_all.position, e.position);
+        worst_all.rotation = std::max(worst_all.rotation, e.rotation);
+        if (N == 100) BOOST_TEST_MESSAGE("constant twist " << kind_name(c.kind) << " " << describe(r));
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("constant twist, worst node error: position " << worst_all.position << " L, rotation "
+                                                                   << worst_all.rotation);
+}
+
+// (2.80): the thesis's componentwise W_bar for the straight circular rod, K = diag(EI, EI, GJ,
+// GA, GA, EA), xi* = e6, against ad_xi^T K (xi - xi*) computed by the code (coad_apply with the
+// model's K) and by the written-out (1.10). All six rows of (2.80) agree (relative 1e-15);
+// row 3 is identically zero because the rod is isotropic in bending (EI wx wy - EI wy wx) and in
+// shear (GA vx vy - GA vy vx).
+BOOST_AUTO_TEST_CASE(thesis_2_80_componentwise) {
+  const auto model = table21_model();
+  const double EI = Table21::EI, GJ = Table21::GJ, GA = Table21::GA, EA = Table21::EA;
+  for (const Vector6& xi : {(Vector6() << 3.0, -2.0, 5.0, 0.04, -0.03, 1.02).finished(),
+                            (Vector6() << -8.0, 5.0, 12.0, -0.2, 0.5, 0.7).finished(),
+                            (Vector6() << 0.1, 0.2, -0.3, 1.0, -2.0, 3.0).finished()}) {
+    const double wx = xi[0], wy = xi[1], wz = xi[2], vx = xi[3], vy = xi[4], vz = xi[5];
+    Vector6 thesis;  // (2.80) as printed
+    thesis << GA * vy * vz - EA * vy * (vz - 1) + EI * wy * wz - GJ * wy * wz,
+        EA * vx * (vz - 1) - GA * vx * vz - EI * wx * wz + GJ * wx * wz,
+        0.0,
+        GA * vy * wz - EA * wy * (vz - 1),
+        EA * wx * (vz - 1) - GA * vx * wz,
+        GA * (vx * wy - vy * wx);
+    const Vector6 code = lie::se3::coad_apply(xi, model.K_diag().cwiseProduct(xi - model.xi_star()));
+    const Vector6 independent = ad_matrix(xi).transpose() *
+                                (Vector6() << EI * wx, EI * wy, GJ * wz, GA * vx, GA * vy, EA * (vz - 1)).finished();
+    const double scale = independent.norm();
+    for (int i = 0; i < 6; ++i) {
+      BOOST_TEST(std::abs(thesis[i] - code[i]) <= 1e-14 * scale,
+                 "(2.80) row " << i + 1 << ": thesis " << thesis[i] << ", code " << code[i]);
+      BOOST_TEST(std::abs(independent[i] - code[i]) <= 1e-14 * scale);
+    }
+  }
+}
