@@ -1,0 +1,100 @@
+#pragma once
+// The SUNDIALS KINSOL adapter: Newton's method with a line search (or full steps) on a large
+// sparse nonlinear system F(x) = 0, with the Jacobian factorised by KLU. This is the only code
+// in rodlab that talks to KINSOL; its header exposes Eigen and std types only (the SUNDIALS
+// headers stay in kinsol_solver.cpp).
+//
+// Following the SUNDIALS lessons of the architecture guide:
+//   - RAII owners for the SUNContext, the N_Vectors, the sparse (CSC) SUNMatrix, the KLU
+//     SUNLinearSolver and the KINSOL memory; nothing leaks on any path, including exceptions;
+//   - residual and Jacobian are std::function over Eigen views of the SUNDIALS storage;
+//   - an exception thrown inside a callback is caught there (the callback returns an
+//     unrecoverable flag, so KINSOL stops) and rethrown from solve() after KINSol returns
+//     (deal.II's pattern); a residual with non-finite entries, or a KinsolRecoverableError,
+//     is reported to KINSOL as a recoverable failure instead;
+//   - every SUNDIALS return code is checked: a set-up failure throws std::runtime_error naming
+//     the call and its flag; non-convergence is a status in KinsolStats, never an exception;
+//   - the solver statistics are returned to the caller.
+//
+// The Jacobian has a sparsity pattern fixed at construction. The Jacobian callback receives a
+// matrix with that pattern and zero values and must only overwrite values (coeffRef on
+// existing entries, InnerIterator::valueRef, or valuePtr()); a changed pattern throws
+// std::logic_error from solve().
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace rodlab::solvers {
+
+/// Thrown by a residual (or Jacobian) callback that cannot be evaluated at this x but may be
+/// at a shorter step: KINSOL is told the failure is recoverable and the error is not rethrown.
+class KinsolRecoverableError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct KinsolOptions {
+  double fnormtol = 1e-10;     ///< stop when |f_scale .* F|_inf <= fnormtol (KINSetFuncNormTol)
+  double scsteptol = 1e-14;    ///< stop when the scaled step is below this (KINSetScaledStepTol)
+  int max_iterations = 200;    ///< nonlinear iterations (KINSetNumMaxIters)
+  bool line_search = true;     ///< KIN_LINESEARCH; false: full Newton steps (KIN_NONE)
+  int max_setup_calls = 1;     ///< iterations between Jacobian evaluations (1: exact Newton;
+                               ///< KINSOL's default is 10, a modified Newton method)
+  double max_newton_step = 0;  ///< scaled length bound of a Newton step; 0: KINSOL's default
+  Eigen::VectorXd u_scale;     ///< diagonal scaling of the unknowns; empty: ones
+  Eigen::VectorXd f_scale;     ///< diagonal scaling of the residual; empty: ones
+  int print_level = 0;         ///< KINSetPrintLevel 0-3: KINSOL's own iteration log on stdout
+};
+
+struct KinsolStats {
+  bool converged = false;  ///< KIN_SUCCESS or KIN_INITIAL_GUESS_OK
+  int flag = 0;            ///< KINSol's return flag
+  std::string flag_name;   ///< e.g. "KIN_SUCCESS", "KIN_LINESEARCH_NONCONV"
+  std::string message;     ///< KINSOL's last error message (empty if none)
+  long nonlinear_iterations = 0;
+  long function_evaluations = 0;  ///< residual calls made by KINSOL (not by the Jacobian callback)
+  long jacobian_evaluations = 0;
+  long backtracks = 0;             ///< line-search backtracking steps
+  long beta_condition_failures = 0;
+  double fnorm = 0.0;  ///< KINSOL's scaled L2 norm of the final residual, |f_scale .* F|_2
+};
+
+class KinsolSolver {
+ public:
+  using Vector = Eigen::VectorXd;
+  using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
+  /// F(x); must write every entry of F.
+  using Residual = std::function<void(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> F)>;
+  /// dF/dx at x, where F = F(x) (handy for finite differences); J has the fixed pattern.
+  using Jacobian = std::function<void(const Eigen::Ref<const Vector>& x,
+                                      const Eigen::Ref<const Vector>& F, SparseMatrix& J)>;
+
+  /// A solver for square systems whose Jacobian has the structural non-zeros of `pattern`
+  /// (values are ignored). Throws std::invalid_argument for a non-square or empty pattern and
+  /// std::runtime_error when SUNDIALS cannot create its objects.
+  explicit KinsolSolver(const SparseMatrix& pattern);
+  ~KinsolSolver();
+  KinsolSolver(const KinsolSolver&) = delete;
+  KinsolSolver& operator=(const KinsolSolver&) = delete;
+  KinsolSolver(KinsolSolver&&) noexcept;
+  KinsolSolver& operator=(KinsolSolver&&) noexcept;
+
+  int size() const;
+
+  /// Solves F(x) = 0 from x (in: the initial guess; out: the last iterate, converged or not).
+  /// Can be called repeatedly (the context, vectors, matrix and KLU solver are reused; every
+  /// call starts a fresh KINSOL run, so the statistics are those of this call). Throws
+  /// std::invalid_argument for bad sizes or options, rethrows a callback's exception.
+  KinsolStats solve(Vector& x, const Residual& residual, const Jacobian& jacobian,
+                    const KinsolOptions& options = {});
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rodlab::solvers

@@ -1,0 +1,270 @@
+#define BOOST_TEST_MODULE kinsol_solver
+#include <boost/test/unit_test.hpp>
+
+// The KINSOL + KLU adapter on small sparse systems with known roots: the extended Rosenbrock
+// system (root: all ones) and the Broyden tridiagonal problem (More, Garbow & Hillstrom 1981,
+// problem 30; checked by its residual), plus the error paths: exceptions thrown in callbacks
+// are rethrown after KINSol returns, non-convergence is a status with KINSOL's flag name, and a
+// Jacobian callback may not change the sparsity pattern.
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "rodlab/solvers/common/kinsol_solver.hpp"
+
+using rodlab::solvers::KinsolOptions;
+using rodlab::solvers::KinsolRecoverableError;
+using rodlab::solvers::KinsolSolver;
+using rodlab::solvers::KinsolStats;
+using Vector = Eigen::VectorXd;
+using Sparse = KinsolSolver::SparseMatrix;
+using VecRef = Eigen::Ref<Vector>;
+using ConstRef = Eigen::Ref<const Vector>;
+
+namespace {
+
+Sparse pattern_from(int n, const std::vector<std::pair<int, int>>& entries) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (auto [i, j] : entries) t.emplace_back(i, j, 1.0);
+  Sparse P(n, n);
+  P.setFromTriplets(t.begin(), t.end());
+  return P;
+}
+
+// Extended Rosenbrock (n even): F_{2k} = 10 (x_{2k+1} - x_{2k}^2), F_{2k+1} = 1 - x_{2k}.
+// The unique root is x = 1; J is block diagonal with 2x2 blocks.
+struct Rosenbrock {
+  int n;
+  Sparse pattern() const {
+    std::vector<std::pair<int, int>> e;
+    for (int k = 0; k < n; k += 2) e.insert(e.end(), {{k, k}, {k, k + 1}, {k + 1, k}});
+    return pattern_from(n, e);
+  }
+  void residual(const ConstRef& x, VecRef F) const {
+    for (int k = 0; k < n; k += 2) {
+      F[k] = 10.0 * (x[k + 1] - x[k] * x[k]);
+      F[k + 1] = 1.0 - x[k];
+    }
+  }
+  void jacobian(const ConstRef& x, const ConstRef&, Sparse& J) const {
+    for (int k = 0; k < n; k += 2) {
+      J.coeffRef(k, k) = -20.0 * x[k];
+      J.coeffRef(k, k + 1) = 10.0;
+      J.coeffRef(k + 1, k) = -1.0;
+    }
+  }
+  Vector start() const {
+    Vector x(n);
+    for (int k = 0; k < n; k += 2) x[k] = -1.2, x[k + 1] = 1.0;
+    return x;
+  }
+};
+
+// Broyden tridiagonal: F_i = (3 - 2 x_i) x_i - x_{i-1} - 2 x_{i+1} + 1, x_0 = x_{n+1} = 0.
+struct BroydenTridiagonal {
+  int n;
+  Sparse pattern() const {
+    std::vector<std::pair<int, int>> e;
+    for (int i = 0; i < n; ++i)
+      for (int j = std::max(0, i - 1); j <= std::min(n - 1, i + 1); ++j) e.emplace_back(i, j);
+    return pattern_from(n, e);
+  }
+  void residual(const ConstRef& x, VecRef F) const {
+    for (int i = 0; i < n; ++i) {
+      const double left = i > 0 ? x[i - 1] : 0.0, right = i + 1 < n ? x[i + 1] : 0.0;
+      F[i] = (3.0 - 2.0 * x[i]) * x[i] - left - 2.0 * right + 1.0;
+    }
+  }
+  /// Writes the values column by column through the pattern (no search per entry).
+  void jacobian(const ConstRef& x, const ConstRef&, Sparse& J) const {
+    for (int j = 0; j < n; ++j)
+      for (Sparse::InnerIterator it(J, j); it; ++it) {
+        const int i = static_cast<int>(it.row());
+        it.valueRef() = i == j ? 3.0 - 4.0 * x[i] : (j == i - 1 ? -1.0 : -2.0);
+      }
+  }
+};
+
+template <class Problem>
+KinsolSolver::Residual residual_of(const Problem& p) {
+  return [&p](const ConstRef& x, VecRef F) { p.residual(x, F); };
+}
+template <class Problem>
+KinsolSolver::Jacobian jacobian_of(const Problem& p) {
+  return [&p](const ConstRef& x, const ConstRef& F, Sparse& J) { p.jacobian(x, F, J); };
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(rosenbrock_converges_to_the_known_root) {
+  const Rosenbrock p{20};
+  KinsolSolver solver(p.pattern());
+  BOOST_TEST(solver.size() == 20);
+  Vector x = p.start();
+  KinsolOptions options;
+  options.fnormtol = 1e-12;
+  const KinsolStats stats = solver.solve(x, residual_of(p), jacobian_of(p), options);
+  BOOST_TEST_MESSAGE("Rosenbrock: " << stats.flag_name << ", " << stats.nonlinear_iterations
+                                    << " iterations, " << stats.jacobian_evaluations << " Jacobians");
+  BOOST_TEST(stats.converged);
+  BOOST_TEST(stats.flag_name == "KIN_SUCCESS");
+  BOOST_TEST((x.array() - 1.0).abs().maxCoeff() <= 1e-12);
+  BOOST_TEST(stats.nonlinear_iterations >= 1);
+  BOOST_TEST(stats.nonlinear_iterations <= 20);
+  // Exact Newton (max_setup_calls = 1): one Jacobian per iteration.
+  BOOST_TEST(stats.jacobian_evaluations == stats.nonlinear_iterations);
+  BOOST_TEST(stats.function_evaluations >= stats.nonlinear_iterations + 1);
+  BOOST_TEST(stats.fnorm <= 1e-11);
+
+  // A second solve on the same solver object starts fresh (statistics of that call only).
+  x = p.start();
+  const KinsolStats again = solver.solve(x, residual_of(p), jacobian_of(p), options);
+  BOOST_TEST(again.converged);
+  BOOST_TEST(again.nonlinear_iterations == stats.nonlinear_iterations);
+  BOOST_TEST(again.function_evaluations == stats.function_evaluations);
+
+  // From the root itself: KIN_INITIAL_GUESS_OK, no iteration.
+  const KinsolStats at_root = solver.solve(x, residual_of(p), jacobian_of(p), options);
+  BOOST_TEST(at_root.converged);
+  BOOST_TEST(at_root.flag_name == "KIN_INITIAL_GUESS_OK");
+  BOOST_TEST(at_root.nonlinear_iterations == 0);
+}
+
+BOOST_AUTO_TEST_CASE(broyden_tridiagonal_with_and_without_line_search_and_scaling) {
+  const BroydenTridiagonal p{200};
+  KinsolSolver solver(p.pattern());
+  for (bool line_search : {true, false}) {
+    Vector x = Vector::Constant(p.n, -1.0);  // the standard starting point
+    KinsolOptions options;
+    options.line_search = line_search;
+    options.fnormtol = 1e-12;
+    const KinsolStats stats = solver.solve(x, residual_of(p), jacobian_of(p), options);
+    BOOST_TEST(stats.converged);
+    Vector F(p.n);
+    p.residual(x, F);
+    BOOST_TEST(F.lpNorm<Eigen::Infinity>() <= 1e-12);
+    BOOST_TEST(stats.nonlinear_iterations <= 10);
+  }
+  // Scaling vectors: the scaled residual is what is tested against fnormtol.
+  Vector x = Vector::Constant(p.n, -1.0);
+  KinsolOptions options;
+  options.fnormtol = 1e-10;
+  options.u_scale = Vector::Constant(p.n, 2.0);
+  options.f_scale = Vector::Constant(p.n, 1e-3);
+  const KinsolStats stats = solver.solve(x, residual_of(p), jacobian_of(p), options);
+  BOOST_TEST(stats.converged);
+  Vector F(p.n);
+  p.residual(x, F);
+  BOOST_TEST(1e-3 * F.lpNorm<Eigen::Infinity>() <= 1e-10);
+}
+
+BOOST_AUTO_TEST_CASE(modified_newton_reuses_the_jacobian) {
+  const BroydenTridiagonal p{50};
+  KinsolSolver solver(p.pattern());
+  Vector x = Vector::Constant(p.n, -1.0);
+  KinsolOptions options;
+  options.max_setup_calls = 10;
+  options.fnormtol = 1e-11;
+  const KinsolStats stats = solver.solve(x, residual_of(p), jacobian_of(p), options);
+  BOOST_TEST(stats.converged);
+  BOOST_TEST(stats.jacobian_evaluations < stats.nonlinear_iterations);
+}
+
+BOOST_AUTO_TEST_CASE(exception_in_the_residual_is_rethrown_after_kinsol_returns) {
+  const Rosenbrock p{4};
+  KinsolSolver solver(p.pattern());
+  int calls = 0;
+  const KinsolSolver::Residual throwing = [&](const ConstRef& x, VecRef F) {
+    if (++calls == 3) throw std::domain_error("residual failed on purpose");
+    p.residual(x, F);
+  };
+  Vector x = p.start();
+  BOOST_CHECK_THROW(solver.solve(x, throwing, jacobian_of(p)), std::domain_error);
+  BOOST_TEST(calls == 3);  // KINSOL stopped at the unrecoverable flag
+  // The solver object is still usable afterwards.
+  x = p.start();
+  BOOST_TEST(solver.solve(x, residual_of(p), jacobian_of(p)).converged);
+}
+
+BOOST_AUTO_TEST_CASE(exception_in_the_jacobian_is_rethrown) {
+  const Rosenbrock p{4};
+  KinsolSolver solver(p.pattern());
+  const KinsolSolver::Jacobian throwing = [](const ConstRef&, const ConstRef&, Sparse&) {
+    throw std::out_of_range("jacobian failed on purpose");
+  };
+  Vector x = p.start();
+  BOOST_CHECK_THROW(solver.solve(x, residual_of(p), throwing), std::out_of_range);
+}
+
+BOOST_AUTO_TEST_CASE(changing_the_pattern_is_an_error) {
+  const Rosenbrock p{4};
+  KinsolSolver solver(p.pattern());
+  const KinsolSolver::Jacobian inserting = [&p](const ConstRef& x, const ConstRef& F, Sparse& J) {
+    p.jacobian(x, F, J);
+    J.coeffRef(1, 1) = 1.0;  // not in the pattern: inserts an entry
+  };
+  Vector x = p.start();
+  BOOST_CHECK_THROW(solver.solve(x, residual_of(p), inserting), std::logic_error);
+}
+
+BOOST_AUTO_TEST_CASE(non_convergence_is_a_status_with_the_flag_name) {
+  const Rosenbrock p{4};
+  KinsolSolver solver(p.pattern());
+  Vector x = p.start();
+  KinsolOptions options;
+  options.max_iterations = 1;
+  const KinsolStats stats = solver.solve(x, residual_of(p), jacobian_of(p), options);
+  BOOST_TEST(!stats.converged);
+  BOOST_TEST(stats.flag_name == "KIN_MAXITER_REACHED");
+  BOOST_TEST(stats.nonlinear_iterations == 1);
+  BOOST_TEST(!stats.message.empty());
+
+  // x^2 + 1 = 0 has no real root: the line search fails (or the iteration stalls).
+  KinsolSolver scalar(pattern_from(1, {{0, 0}}));
+  Vector y = Vector::Constant(1, 0.5);
+  const KinsolStats none = scalar.solve(
+      y, [](const ConstRef& v, VecRef F) { F[0] = v[0] * v[0] + 1.0; },
+      [](const ConstRef& v, const ConstRef&, Sparse& J) { J.coeffRef(0, 0) = 2.0 * v[0]; });
+  BOOST_TEST_MESSAGE("x^2 + 1: " << none.flag_name << " after " << none.nonlinear_iterations << " iterations");
+  BOOST_TEST(!none.converged);
+  BOOST_TEST(none.flag < 0);
+  BOOST_TEST(none.flag_name.rfind("KIN_", 0) == 0);
+}
+
+BOOST_AUTO_TEST_CASE(non_finite_residual_is_recoverable_not_thrown) {
+  const Rosenbrock p{4};
+  KinsolSolver solver(p.pattern());
+  Vector x = p.start();
+  const KinsolStats stats = solver.solve(
+      x, [](const ConstRef&, VecRef F) { F.setConstant(std::nan("")); }, jacobian_of(p));
+  BOOST_TEST(!stats.converged);
+  BOOST_TEST(stats.flag_name == "KIN_FIRST_SYSFUNC_ERR");
+
+  x = p.start();
+  const KinsolStats thrown = solver.solve(
+      x, [](const ConstRef&, VecRef) { throw KinsolRecoverableError("cannot evaluate here"); },
+      jacobian_of(p));
+  BOOST_TEST(!thrown.converged);
+  BOOST_TEST(thrown.flag_name == "KIN_FIRST_SYSFUNC_ERR");
+}
+
+BOOST_AUTO_TEST_CASE(bad_inputs_throw_invalid_argument) {
+  BOOST_CHECK_THROW(KinsolSolver(Sparse(3, 4)), std::invalid_argument);
+  BOOST_CHECK_THROW(KinsolSolver(Sparse(3, 3)), std::invalid_argument);  // no entries
+  const Rosenbrock p{4};
+  KinsolSolver solver(p.pattern());
+  Vector wrong(3);
+  wrong.setZero();
+  BOOST_CHECK_THROW(solver.solve(wrong, residual_of(p), jacobian_of(p)), std::invalid_argument);
+  Vector x = p.start();
+  KinsolOptions bad;
+  bad.fnormtol = -1.0;
+  BOOST_CHECK_THROW(solver.solve(x, residual_of(p), jacobian_of(p), bad), std::invalid_argument);
+  bad = {};
+  bad.u_scale = Vector::Constant(4, -1.0);
+  BOOST_CHECK_THROW(solver.solve(x, residual_of(p), jacobian_of(p), bad), std::invalid_argument);
+  bad = {};
+  bad.f_scale = Vector::Ones(5);
+  BOOST_CHECK_THROW(solver.solve(x, residual_of(p), jacobian_of(p), bad), std::invalid_argument);
+}
