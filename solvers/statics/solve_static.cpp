@@ -4,6 +4,8 @@
 #include <stdexcept>
 
 #include "rodlab/solvers/schemes.hpp"
+#include "rodlab/solvers/statics/chebyshev.hpp"
+#include "rodlab/solvers/statics/kinsol_collocation.hpp"
 #include "rodlab/solvers/statics/shooting.hpp"
 
 namespace rodlab::solvers::statics {
@@ -33,6 +35,14 @@ result::StaticResult solve_static(const StaticProblem& problem, const StaticSolv
   result::StaticResult out;
   if (const auto method = rkmk_method(options.scheme)) {
     out = solve_shooting(problem, *method, {options.nodes, options.tol, options.max_iterations});
+  } else if (options.scheme == "chebyshev") {
+    out = solve_chebyshev(problem, {options.nodes, options.tol, options.max_iterations});
+  } else if (options.scheme == "kinsol") {
+    KinsolCollocationOptions kinsol;
+    kinsol.nodes = options.nodes;
+    kinsol.tol = options.tol;
+    kinsol.max_iterations = options.max_iterations;
+    out = solve_kinsol_collocation(problem, kinsol);
   } else {
     throw std::invalid_argument("scheme '" + options.scheme + "' is not available yet; it arrives with " +
                                 std::string(info->arrives));

@@ -3,6 +3,9 @@
 // wrench Lambda(0) so that the tip conditions hold, started from the equilibrium of the
 // undeformed rod (exact to first order in the loads), with load continuation when the direct
 // solve fails.
+#include <span>
+#include <vector>
+
 #include "rodlab/result/static_result.hpp"
 #include "rodlab/solvers/statics/rkmk.hpp"
 
@@ -18,7 +21,12 @@ result::StaticResult solve_shooting(const StaticProblem& problem, RkmkMethod met
                                     const ShootingOptions& options);
 
 /// Lambda(0) of the undeformed rod in equilibrium with the loads (marching (2.34) back from
-/// the tip with xi = xi*): the shooting's initial guess.
+/// the tip with xi = xi*, `steps` RK4 steps, at least 4): the shooting's initial guess.
 Vector6 rigid_base_wrench(const StaticProblem& problem, int steps);
+
+/// The same equilibrium at the ascending arclengths s in [0, L] (the march is split there):
+/// the collocation schemes' initial guess. Zero for a clamped tip.
+std::vector<Vector6> rigid_wrench_profile(const StaticProblem& problem, std::span<const double> s,
+                                          int steps);
 
 }  // namespace rodlab::solvers::statics

@@ -1,0 +1,671 @@
+#include "rodlab/solvers/statics/chebyshev.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+#include "rodlab/solvers/common/chebyshev_operators.hpp"
+#include "rodlab/solvers/statics/continuation.hpp"
+#include "rodlab/solvers/statics/result_builder.hpp"
+#include "rodlab/solvers/statics/shooting.hpp"
+
+namespace rodlab::solvers::statics {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using std::numbers::pi;
+
+/// A chart turning by more than this triggers a split into more elements.
+constexpr double kSplitRotation = 2.0 * pi / 3.0;
+/// Iterates whose chart turns by more than this are rejected (dexp^-1 has its pole at 2 pi).
+constexpr double kChartLimit = 0.9 * 2.0 * pi;
+/// Minimum nodes per element when elements are chosen automatically, and the fallback minimum
+/// when a failed attempt cannot otherwise be split.
+constexpr int kMinElementNodes = 5;
+constexpr int kMinFallbackNodes = 3;
+/// Below this ratio of the smallest to the largest pivot the Newton matrix is treated as singular.
+constexpr double kSingularPivot = 1e-14;
+/// Reuse the factorisation while the residual drops by at least this factor per step.
+constexpr double kReuseRatio = 0.1;
+/// Converged also when the residual stalls within this factor of its rounding level.
+constexpr double kRoundingFactor = 10.0;
+/// Newton iterations allowed per element layout, direct solve and continuation together, in
+/// units of max_iterations (each may cost a dense factorisation).
+constexpr int kBudgetFactor = 4;
+/// A converged solution whose collocation residual between the nodes exceeds this fraction of
+/// its size (scaled unknowns, at least 1) is reported as not resolved. Measured: resolved
+/// solutions <= 0.05 (N = 12, heavy gravity), spurious roots >= 1.5.
+constexpr double kResolvedDefect = 0.25;
+/// Line-search halvings before a step is given up (alpha down to 2^-19).
+constexpr int kMaxHalvings = 20;
+/// Central-difference step for the node blocks of the Jacobian (scaled unknowns).
+constexpr double kFdStep = 1e-5;
+
+struct Element {
+  int n;                  ///< nodes
+  int offset;             ///< index of its first node in the unknowns (interface nodes duplicated)
+  double half;            ///< half its length: d/ds = D / half
+  const MatrixXd* D;      ///< Chebyshev-Lobatto differentiation on [-1, 1]
+  const MatrixXd* absD;   ///< its entries' magnitudes
+  std::vector<double> s;  ///< arclengths of its nodes
+};
+
+struct NewtonOutcome {
+  bool converged = false;
+  int iterations = 0;
+  double residual_norm = 0.0;
+  std::string reason;
+};
+
+/// The collocation system of one element layout at the problem's current load factor.
+class Collocation {
+ public:
+  Collocation(const StaticProblem& problem, int nodes, int elements) : P_(problem) {
+    const double L = P_.length();
+    const int intervals = nodes - 1;
+    const int base = intervals / elements, extra = intervals % elements;
+    int offset = 0;
+    for (int e = 0; e < elements; ++e) {
+      const int n = base + (e < extra ? 1 : 0) + 1;
+      auto it = operators_.find(n);
+      if (it == operators_.end()) {
+        MatrixXd D = chebyshev_differentiation_matrix(n);
+        MatrixXd absD = D.cwiseAbs();
+        it = operators_.emplace(n, std::pair{std::move(D), std::move(absD)}).first;
+      }
+      const double a = L * e / elements, b = e + 1 == elements ? L : L * (e + 1) / elements;
+      const VectorXd t = chebyshev_lobatto_points(n);
+      std::vector<double> s(n);
+      for (int i = 0; i < n; ++i) s[i] = i == 0 ? a : i == n - 1 ? b : 0.5 * (a + b) + 0.5 * (b - a) * t[i];
+      elements_.push_back({n, offset, 0.5 * (b - a), &it->second.first, &it->second.second, std::move(s)});
+      offset += n;
+    }
+    nodes_ = nodes;
+    total_nodes_ = offset;
+    theta_scale_ << 1.0, 1.0, 1.0, L, L, L;
+    charts_.resize(elements);
+  }
+
+  int size() const { return 12 * total_nodes_; }
+  int elements() const { return static_cast<int>(elements_.size()); }
+  StaticProblem& problem() { return P_; }
+
+  /// Reference configuration theta = (s - s_e) xi* and the undeformed rod's equilibrium wrench at
+  /// the current load factor.
+  VectorXd reference_guess() const {
+    std::vector<double> all;
+    for (const auto& el : elements_) all.insert(all.end(), el.s.begin(), el.s.end());
+    const auto Lambda = rigid_wrench_profile(P_, all, nodes_ - 1);  // ascending, with duplicates
+    VectorXd x(size());
+    for (const auto& el : elements_)
+      for (int i = 0; i < el.n; ++i) {
+        double* xn = x.data() + 12 * (el.offset + i);
+        node_theta(xn) = ((el.s[i] - el.s[0]) * P_.model().xi_star()).cwiseQuotient(theta_scale_);
+        node_lambda(xn) = Lambda[el.offset + i].cwiseQuotient(P_.wrench_scale());
+      }
+    return x;
+  }
+
+  /// Clamped tip: the constant twist xi_c = log(g_0^-1 g_target) / L that joins base and target
+  /// (thesis 2.5), theta = (s - s_e) xi_c, Lambda = K (xi_c - xi*) (Kirchhoff: its moment part).
+  /// Exact for a target at the end of a circular arc or helix.
+  VectorXd constant_twist_guess() const {
+    const Vector6 xi = (P_.base().inverse() * P_.tip_target()).log() / P_.length();
+    Vector6 Lambda = P_.rod_wrench(xi);
+    if (P_.model().is_kirchhoff()) Lambda.tail<3>().setZero();
+    VectorXd x(size());
+    for (const auto& el : elements_)
+      for (int i = 0; i < el.n; ++i) {
+        double* xn = x.data() + 12 * (el.offset + i);
+        node_theta(xn) = ((el.s[i] - el.s[0]) * xi).cwiseQuotient(theta_scale_);
+        node_lambda(xn) = Lambda.cwiseQuotient(P_.wrench_scale());
+      }
+    return x;
+  }
+
+  /// F(x); false if a chart leaves its domain or something is not finite.
+  bool residual(const VectorXd& x, VectorXd& F) {
+    if (!update_charts(x)) return false;
+    F.resize(size());
+    for (int e = 0; e < elements(); ++e) {
+      const Element& el = elements_[e];
+      for (int i = 0; i < el.n; ++i) local_rows(e, i, x.data(), F.data() + 12 * (el.offset + i));
+      add_linear(e, x, F);
+    }
+    return F.allFinite();
+  }
+
+  /// The Newton matrix at x.
+  void jacobian(const VectorXd& x, MatrixXd& J) {
+    update_charts(x);
+    J.setZero(size(), size());
+    VectorXd xp = x;
+    Eigen::Matrix<double, 12, 1> Fp, Fm;
+    for (int e = 0; e < elements(); ++e) {
+      const Element& el = elements_[e];
+      const MatrixXd& D = *el.D;
+      // Linear part: D on theta (rows 1..n-1) and Lambda (rows 0..n-2), continuity.
+      for (int i = 0; i < el.n; ++i) {
+        const int row = 12 * (el.offset + i);
+        for (int k = 0; k < el.n; ++k) {
+          const int col = 12 * (el.offset + k);
+          if (i > 0)
+            for (int c = 0; c < 6; ++c) J(row + c, col + c) = D(i, k);
+          if (i < el.n - 1)
+            for (int c = 6; c < 12; ++c) J(row + c, col + c) = D(i, k);
+        }
+      }
+      if (e + 1 < elements()) {
+        const int row = 12 * (el.offset + el.n - 1), col = 12 * elements_[e + 1].offset;
+        for (int c = 6; c < 12; ++c) J(row + c, col + c) = -1.0;
+      }
+      // Node blocks by central differences.
+      for (int i = 0; i < el.n; ++i) {
+        const int base = 12 * (el.offset + i);
+        for (int c = 0; c < 12; ++c) {
+          const double h = kFdStep * std::max(1.0, std::abs(x[base + c]));
+          xp[base + c] = x[base + c] + h;
+          local_rows(e, i, xp.data(), Fp.data());
+          xp[base + c] = x[base + c] - h;
+          local_rows(e, i, xp.data(), Fm.data());
+          xp[base + c] = x[base + c];
+          J.block<12, 1>(base, base + c) += (Fp - Fm) / (2.0 * h);
+        }
+      }
+    }
+    // Chart chain: the last theta of element e moves the charts of all later elements.
+    for (int e = 0; e + 1 < elements(); ++e) {
+      const Element& el = elements_[e];
+      const int col = 12 * (el.offset + el.n - 1);
+      for (int c = 0; c < 6; ++c) {
+        const double h = kFdStep * std::max(1.0, std::abs(x[col + c]));
+        xp[col + c] = x[col + c] + h;
+        const auto plus = downstream_rows(e, xp);
+        xp[col + c] = x[col + c] - h;
+        const auto minus = downstream_rows(e, xp);
+        xp[col + c] = x[col + c];
+        const int first_row = 12 * elements_[e + 1].offset;
+        J.block(first_row, col + c, plus.size(), 1) += (plus - minus) / (2.0 * h);
+      }
+    }
+    update_charts(x);
+  }
+
+  /// Newton at the current load factor; x is updated in place (the last accepted iterate).
+  NewtonOutcome newton(VectorXd& x, double tol, int max_iterations, int& factorizations) {
+    NewtonOutcome out;
+    VectorXd F, x_new, F_new, dx, next;
+    if (!residual(x, F)) {
+      out.reason = "the residual is not finite at the initial guess";
+      out.residual_norm = std::numeric_limits<double>::infinity();
+      return out;
+    }
+    // The LU works in place in J_ (no second n^2 buffer: at N = 24 the page faults of fresh
+    // buffers cost a third of the factorisation).
+    std::optional<Eigen::PartialPivLU<Eigen::Ref<MatrixXd>>> lu;
+    Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod;
+    bool use_cod = false;  // the Newton matrix is singular: minimum-norm least-squares steps
+    auto solve = [&](const VectorXd& rhs) -> VectorXd {
+      return use_cod ? VectorXd(cod.solve(rhs)) : VectorXd(lu->solve(rhs));
+    };
+    bool have_lu = false, fresh = false, have_next = false, stalled = false;
+    // Converged: |F| <= tol, or |F| at its rounding level and no longer decreasing.
+    auto at_rounding_level = [&] { return out.residual_norm <= kRoundingFactor * rounding_level(x); };
+    for (out.iterations = 0;; ++out.iterations) {
+      out.residual_norm = F.lpNorm<Eigen::Infinity>();
+      if (out.residual_norm <= tol || (stalled && at_rounding_level())) {
+        out.converged = true;
+        return out;
+      }
+      if (out.iterations == max_iterations) break;
+      if (!have_lu) {
+        jacobian(x, J_);
+        if (lu) lu->compute(J_);
+        else lu.emplace(J_);
+        ++factorizations;
+        // A singular matrix (e.g. the axial mode of a straight Kirchhoff rod with both ends
+        // clamped, where the axial force is undetermined to first order) gets least-squares steps.
+        const auto pivots = lu->matrixLU().diagonal().cwiseAbs();
+        use_cod = !(pivots.minCoeff() > kSingularPivot * pivots.maxCoeff()) || !lu->solve(F).allFinite();
+        if (use_cod) {
+          jacobian(x, J_);  // the LU overwrote it
+          cod.compute(J_);
+        }
+        have_lu = fresh = true;
+        have_next = false;
+      }
+      dx = have_next ? next : VectorXd(-solve(F));
+      if (!dx.allFinite()) {
+        out.reason = "singular Newton matrix";
+        return out;
+      }
+      // Backtracking with the natural monotonicity test (Deuflhard): the residual scaled by the
+      // current Newton matrix, i.e. the next simplified Newton step -J^-1 F(x + alpha dx), must be
+      // shorter than (1 - alpha/4) |dx|. That step is then the next (chord) step.
+      const double step = dx.norm();
+      double alpha = 1.0;
+      bool accepted = false;
+      for (int k = 0; k < kMaxHalvings; ++k, alpha *= 0.5) {
+        x_new = x + alpha * dx;
+        if (!residual(x_new, F_new)) continue;
+        next = -solve(F_new);
+        if (next.norm() <= (1.0 - 0.25 * alpha) * step) {
+          accepted = true;
+          break;
+        }
+      }
+      if (!accepted) {
+        if (at_rounding_level()) {
+          out.converged = true;
+          return out;
+        }
+        if (fresh) {
+          out.reason = "line search failed (natural monotonicity test)";
+          return out;
+        }
+        have_lu = false;  // a stale factorisation: refresh it at the same x
+        continue;
+      }
+      const double ratio = F_new.norm() / F.norm();
+      stalled = ratio > 0.5;
+      x.swap(x_new);
+      F.swap(F_new);
+      fresh = false;
+      have_next = true;
+      if (ratio > kReuseRatio) have_lu = false;  // slow: a new Newton matrix at the new x
+    }
+    out.reason = "no convergence within " + std::to_string(max_iterations) + " Newton iterations";
+    return out;
+  }
+
+  /// Rounding level of the residual at x: eps max_j sum_k |D_jk| |x_k| (the D rows dominate; it
+  /// grows like N^2, so at large N a tight tol may lie below it).
+  double rounding_level(const VectorXd& x) const {
+    using Block = Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor>;
+    double level = 0.0;
+    for (const auto& el : elements_) {
+      const Eigen::Map<const Block> X(x.data() + 12 * el.offset, el.n, 12);
+      level = std::max(level, (*el.absD * X.cwiseAbs()).maxCoeff());
+    }
+    return std::numeric_limits<double>::epsilon() * level;
+  }
+
+  /// The unknowns of another layout's solution x_other on this layout: g and Lambda
+  /// interpolated spectrally in the other's elements, theta = log(g_e^-1 g) in this layout's
+  /// charts.
+  VectorXd resample(Collocation& other, const VectorXd& x_other) const {
+    other.update_charts(x_other);
+    VectorXd x(size());
+    for (const auto& el : elements_) {
+      SE3 chart;
+      for (int i = 0; i < el.n; ++i) {
+        SE3 g;
+        Vector6 La;
+        other.sample(x_other, el.s[i], g, La);
+        if (i == 0) chart = g;
+        double* xn = x.data() + 12 * (el.offset + i);
+        const Vector6 th = i == 0 ? Vector6::Zero() : Vector6((chart.inverse() * g).log());
+        node_theta(xn) = th.cwiseQuotient(theta_scale_);
+        node_lambda(xn) = La.cwiseQuotient(P_.wrench_scale());
+      }
+    }
+    return x;
+  }
+
+  /// The collocation residual between the nodes: (2.103)-(2.104) for the interpolants of theta
+  /// and Lambda (and of D theta, D Lambda: the interpolants' derivatives) at the midpoints in
+  /// angle of consecutive nodes of every element, scaled like the rows, inf-norm. Of the size of
+  /// the discretisation error for a resolved solution; comparable to the solution itself for a
+  /// spurious root of an under-resolved discretisation.
+  double off_grid_residual(const VectorXd& x) {
+    update_charts(x);
+    double worst = 0.0;
+    using Block = Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor>;
+    for (int e = 0; e < elements(); ++e) {
+      const Element& el = elements_[e];
+      const int m = el.n - 1;
+      Eigen::VectorXd t(m);
+      for (int j = 0; j < m; ++j) t[j] = -std::cos((j + 0.5) * pi / m);
+      const MatrixXd C = chebyshev_interpolation_matrix(el.n, t);
+      const Eigen::Map<const Block> X(x.data() + 12 * el.offset, el.n, 12);
+      const Block values = C * X, slopes = C * ((*el.D) * X);
+      for (int j = 0; j < m; ++j) {
+        const Vector6 th = Vector6(values.row(j).head<6>().transpose()).cwiseProduct(theta_scale_);
+        const Vector6 La = Vector6(values.row(j).tail<6>().transpose()).cwiseProduct(P_.wrench_scale());
+        const Vector6 xi = P_.strain(La);
+        const SO3 R = charts_[e].rotation() * SO3::exp(th.head<3>());
+        const Vector6 r_theta = Vector6(slopes.row(j).head<6>().transpose()) -
+                                (el.half * lie::se3::dexp_inv_apply(-th, xi)).cwiseQuotient(theta_scale_);
+        const Vector6 r_lambda = Vector6(slopes.row(j).tail<6>().transpose()) -
+                                 (el.half * P_.wrench_derivative(R, xi, La)).cwiseQuotient(P_.wrench_scale());
+        worst = std::max({worst, r_theta.lpNorm<Eigen::Infinity>(), r_lambda.lpNorm<Eigen::Infinity>()});
+      }
+    }
+    return worst;
+  }
+
+  /// Largest |omega(theta)| over all nodes: how far each chart turns.
+  double max_chart_rotation(const VectorXd& x) const {
+    double m = 0.0;
+    for (int k = 0; k < total_nodes_; ++k) m = std::max(m, x.segment<3>(12 * k).norm());
+    return m;
+  }
+
+  /// Node values of a solution, interface duplicates removed.
+  void nodes(const VectorXd& x, std::vector<double>& s, std::vector<SE3>& g, std::vector<Vector6>& Lambda) {
+    update_charts(x);
+    s.clear();
+    g.clear();
+    Lambda.clear();
+    for (int e = 0; e < elements(); ++e) {
+      const Element& el = elements_[e];
+      const int last = e + 1 < elements() ? el.n - 1 : el.n;
+      for (int i = 0; i < last; ++i) {
+        const double* xn = x.data() + 12 * (el.offset + i);
+        s.push_back(el.s[i]);
+        g.push_back(charts_[e] * SE3::exp(theta(xn)));
+        Lambda.push_back(lambda(xn));
+      }
+    }
+  }
+
+ private:
+  static Eigen::Map<Vector6> node_theta(double* xn) { return Eigen::Map<Vector6>(xn); }
+  static Eigen::Map<Vector6> node_lambda(double* xn) { return Eigen::Map<Vector6>(xn + 6); }
+  Vector6 theta(const double* xn) const { return Eigen::Map<const Vector6>(xn).cwiseProduct(theta_scale_); }
+  Vector6 lambda(const double* xn) const {
+    return Eigen::Map<const Vector6>(xn + 6).cwiseProduct(P_.wrench_scale());
+  }
+
+  /// g and Lambda at arclength s by barycentric interpolation of theta and Lambda in the element
+  /// that contains s (the charts must be those of x).
+  void sample(const VectorXd& x, double s, SE3& g, Vector6& Lambda) const {
+    std::size_t e = 0;
+    while (e + 1 < elements_.size() && s > elements_[e].s.back()) ++e;
+    const Element& el = elements_[e];
+    Eigen::VectorXd t(1);
+    t[0] = std::clamp((s - el.s.front()) / el.half - 1.0, -1.0, 1.0);
+    const Eigen::RowVectorXd C = chebyshev_interpolation_matrix(el.n, t);
+    Vector6 th = Vector6::Zero();
+    Lambda.setZero();
+    for (int i = 0; i < el.n; ++i) {
+      th += C[i] * theta(x.data() + 12 * (el.offset + i));
+      Lambda += C[i] * lambda(x.data() + 12 * (el.offset + i));
+    }
+    g = charts_[e] * SE3::exp(th);
+  }
+
+  /// Chart bases g_e from x; false if some chart turns past kChartLimit.
+  bool update_charts(const VectorXd& x) { return update_charts_from(0, x); }
+  bool update_charts_from(int first, const VectorXd& x) {
+    if (first == 0) charts_[0] = P_.base();
+    bool ok = true;
+    for (int e = 0; e < elements(); ++e) {
+      const Element& el = elements_[e];
+      for (int i = 0; i < el.n; ++i)
+        if (!(x.segment<3>(12 * (el.offset + i)).norm() < kChartLimit)) ok = false;
+      if (e + 1 < elements() && e + 1 > first)
+        charts_[e + 1] = charts_[e] * SE3::exp(theta(x.data() + 12 * (el.offset + el.n - 1)));
+    }
+    return ok;
+  }
+
+  /// The rows of node i of element e that depend on the node's own unknowns (and the chart).
+  void local_rows(int e, int i, const double* x, double* out) const {
+    const Element& el = elements_[e];
+    const double* xn = x + 12 * (el.offset + i);
+    const Vector6 th = theta(xn), La = lambda(xn);
+    const Vector6 xi = P_.strain(La);
+    Eigen::Map<Vector6> theta_row(out), lambda_row(out + 6);
+    if (i == 0) {
+      theta_row = Eigen::Map<const Vector6>(xn);  // theta_0 = 0
+    } else {  // (2.104)
+      theta_row = (-el.half * lie::se3::dexp_inv_apply(-th, xi)).cwiseQuotient(theta_scale_);
+    }
+    if (i < el.n - 1) {  // (2.103)
+      const SO3 R = charts_[e].rotation() * SO3::exp(th.head<3>());
+      lambda_row = (-el.half * P_.wrench_derivative(R, xi, La)).cwiseQuotient(P_.wrench_scale());
+    } else if (e + 1 < elements()) {  // continuity; the next element's part is linear
+      lambda_row = Eigen::Map<const Vector6>(xn + 6);
+    } else {
+      lambda_row = P_.tip_residual(charts_[e] * SE3::exp(th), La);
+    }
+  }
+
+  /// D theta, D Lambda and the continuity coupling of element e, added to F.
+  void add_linear(int e, const VectorXd& x, VectorXd& F) const {
+    const Element& el = elements_[e];
+    using Block = Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor>;
+    const Eigen::Map<const Block> X(x.data() + 12 * el.offset, el.n, 12);
+    Eigen::Map<Block> Y(F.data() + 12 * el.offset, el.n, 12);
+    const Block DX = (*el.D) * X;
+    Y.bottomLeftCorner(el.n - 1, 6) += DX.bottomLeftCorner(el.n - 1, 6);
+    Y.topRightCorner(el.n - 1, 6) += DX.topRightCorner(el.n - 1, 6);
+    if (e + 1 < elements())
+      F.segment<6>(12 * (el.offset + el.n - 1) + 6) -= x.segment<6>(12 * elements_[e + 1].offset + 6);
+  }
+
+  /// Local rows of every node after element e, with the charts recomputed from x.
+  VectorXd downstream_rows(int e, const VectorXd& x) {
+    update_charts_from(e + 1, x);
+    const int first = elements_[e + 1].offset;
+    VectorXd out(12 * (total_nodes_ - first));
+    for (int f = e + 1; f < elements(); ++f) {
+      const Element& el = elements_[f];
+      for (int i = 0; i < el.n; ++i) local_rows(f, i, x.data(), out.data() + 12 * (el.offset + i - first));
+    }
+    return out;
+  }
+
+  StaticProblem P_;
+  MatrixXd J_;  ///< the Newton matrix, factorised in place
+  std::map<int, std::pair<MatrixXd, MatrixXd>> operators_;  ///< by node count: D, |D|
+  std::vector<Element> elements_;
+  std::vector<SE3> charts_;
+  int total_nodes_ = 0, nodes_ = 0;
+  Vector6 theta_scale_;
+};
+
+struct Attempt {
+  bool converged = false;
+  VectorXd x;
+  double residual_norm = 0.0;
+  double rotation = 0.0;
+  std::string reason;
+};
+
+class ChebyshevSolver {
+ public:
+  ChebyshevSolver(const StaticProblem& problem, const ChebyshevOptions& options)
+      : P_(problem), options_(options) {}
+
+  result::StaticResult run(ChebyshevReport* report) {
+    const int N = options_.nodes;
+    int E = options_.elements > 0 ? options_.elements : 1;
+    const bool automatic = options_.elements <= 0;
+    // Elements of at least kMinElementNodes nodes; when that allows no split and the attempt
+    // failed, elements down to kMinFallbackNodes (small N, e.g. a full circle with N = 5).
+    const int max_elements = std::max(1, (N - 1) / (kMinElementNodes - 1));
+    const int max_fallback_elements = std::max(1, (N - 1) / (kMinFallbackNodes - 1));
+    std::optional<Collocation> best;
+    Attempt best_attempt;
+    std::string reasons;
+    for (;;) {
+      Collocation C(P_, N, E);
+      const bool refining = best && best_attempt.converged;
+      Attempt a = refining ? refine(C, *best, best_attempt.x)
+                           : attempt(C, automatic && 2 * E <= max_elements);
+      if (refining && !a.converged) break;  // keep the converged coarser solution
+      const int limit = a.converged ? max_elements : max_fallback_elements;
+      const bool split = automatic && a.rotation > kSplitRotation && 2 * E <= limit;
+      if (a.converged) {
+        best.emplace(std::move(C));
+        best_attempt = std::move(a);
+        if (!split) break;
+      } else {
+        if (!reasons.empty()) reasons += "; ";
+        reasons += std::to_string(E) + (E == 1 ? " element: " : " elements: ") + a.reason;
+        if (!best) {
+          best.emplace(std::move(C));
+          best_attempt = std::move(a);
+        }
+        if (!split) break;
+      }
+      E *= 2;
+    }
+    Collocation& C = *best;
+    C.problem().set_load_factor(1.0);
+    if (best_attempt.converged) {
+      // A root of the discrete equations whose polynomials violate the rod equations between the
+      // nodes by as much as the solution's own size is a spurious root of an under-resolved
+      // discretisation (e.g. a Kirchhoff rod "reaching" a target beyond its length), not a
+      // solution.
+      const double defect = C.off_grid_residual(best_attempt.x);
+      const double size = std::max(1.0, best_attempt.x.lpNorm<Eigen::Infinity>());
+      if (!(defect <= kResolvedDefect * size)) {
+        best_attempt.converged = false;
+        reasons = "not resolved: the collocation residual between the nodes is " +
+                  std::to_string(defect / size) +
+                  " times the solution's size (a spurious root of the discrete equations); increase nodes";
+      }
+    }
+    std::vector<double> s;
+    std::vector<SE3> g;
+    std::vector<Vector6> Lambda;
+    C.nodes(best_attempt.x, s, g, Lambda);
+    result::StaticResult out;
+    fill_static_result(C.problem(), s, g, Lambda, out);
+    out.scene = P_.name();
+    out.converged = best_attempt.converged;
+    out.reason = best_attempt.converged ? "" : reasons;
+    out.iterations = iterations_;
+    out.residual_norm = best_attempt.residual_norm;
+    if (report) {
+      report->elements = C.elements();
+      report->factorizations = factorizations_;
+      report->max_chart_rotation = C.max_chart_rotation(best_attempt.x);
+    }
+    return out;
+  }
+
+ private:
+  /// Newton at load factor 1 from a converged solution on fewer elements, resampled.
+  Attempt refine(Collocation& C, Collocation& coarse, const VectorXd& x_coarse) {
+    Attempt a;
+    C.problem().set_load_factor(1.0);
+    a.x = C.resample(coarse, x_coarse);
+    const auto r = C.newton(a.x, options_.tol, options_.max_iterations, factorizations_);
+    iterations_ += r.iterations;
+    a.converged = r.converged;
+    a.residual_norm = r.residual_norm;
+    a.rotation = C.max_chart_rotation(a.x);
+    a.reason = r.reason;
+    return a;
+  }
+
+  /// Direct Newton at load factor 1 from the reference guess, then continuation. With
+  /// `may_split`, a failed direct solve whose iterate turns a chart by more than kSplitRotation
+  /// returns at once (more elements will be tried), and so does continuation on reaching such a
+  /// rotation.
+  Attempt attempt(Collocation& C, bool may_split) {
+    int budget = kBudgetFactor * options_.max_iterations;
+    auto solve_at = [&](double lf, VectorXd& x) {
+      C.problem().set_load_factor(lf);
+      const auto r = C.newton(x, options_.tol, std::min(options_.max_iterations, budget), factorizations_);
+      iterations_ += r.iterations;
+      budget -= r.iterations;
+      return r;
+    };
+    Attempt a;
+    C.problem().set_load_factor(1.0);
+    a.x = C.reference_guess();
+    auto direct = solve_at(1.0, a.x);
+    a.rotation = C.max_chart_rotation(a.x);
+    if (!direct.converged && !(may_split && a.rotation > kSplitRotation) && P_.tip_clamped()) {
+      VectorXd x = C.constant_twist_guess();  // a second guess for a clamped tip
+      const auto second = solve_at(1.0, x);
+      if (second.converged || second.residual_norm < direct.residual_norm) {
+        direct = second;
+        a.x = std::move(x);
+        a.rotation = C.max_chart_rotation(a.x);
+      }
+    }
+    a.converged = direct.converged;
+    a.residual_norm = direct.residual_norm;
+    if (direct.converged || (may_split && a.rotation > kSplitRotation)) {
+      a.reason = direct.reason;
+      return a;
+    }
+    Continuation walk;
+    walk.correct = [&](double lf, const VectorXd& guess) {
+      CorrectorResult r;
+      if (budget <= 0) {
+        r.reason = "the budget of " + std::to_string(kBudgetFactor * options_.max_iterations) +
+                   " Newton iterations is spent";
+        return r;
+      }
+      r.state = guess;
+      const auto n = solve_at(lf, r.state);
+      r.converged = n.converged;
+      r.residual_norm = n.residual_norm;
+      r.reason = n.reason;
+      return r;
+    };
+    walk.first_predictor = [&](double from, double to, const VectorXd& state) {
+      C.problem().set_load_factor(to);
+      VectorXd predicted = state + C.reference_guess();
+      C.problem().set_load_factor(from);
+      return VectorXd(predicted - C.reference_guess());
+    };
+    if (may_split)
+      walk.stop = [&](double lf, const VectorXd& state, std::string& why) {
+        if (C.max_chart_rotation(state) <= kSplitRotation) return false;
+        why = "a chart turns by more than 2 pi / 3 at load factor " + std::to_string(lf);
+        return true;
+      };
+    C.problem().set_load_factor(0.0);
+    const auto cont = continue_load(walk, C.reference_guess());
+    if (cont.converged) {
+      a.x = cont.state;
+      a.converged = true;
+      a.residual_norm = cont.residual_norm;
+      a.rotation = C.max_chart_rotation(a.x);
+      a.reason.clear();
+    } else {
+      a.reason = "direct Newton: " + direct.reason + "; continuation: " + cont.reason;
+      a.rotation = std::max(a.rotation, C.max_chart_rotation(cont.state));
+    }
+    C.problem().set_load_factor(1.0);
+    return a;
+  }
+
+  StaticProblem P_;
+  ChebyshevOptions options_;
+  int iterations_ = 0;
+  int factorizations_ = 0;
+};
+
+}  // namespace
+
+result::StaticResult solve_chebyshev(const StaticProblem& problem, const ChebyshevOptions& options,
+                                     ChebyshevReport* report) {
+  if (options.nodes < 2) throw std::invalid_argument("chebyshev needs nodes >= 2");
+  if (options.elements > std::max(1, options.nodes - 1))
+    throw std::invalid_argument("chebyshev: " + std::to_string(options.elements) +
+                                " elements need more than " + std::to_string(options.nodes) + " nodes");
+  if (problem.has_actuators())
+    throw std::invalid_argument("the chebyshev scheme does not support actuators yet; use an rkmk-* scheme");
+  return ChebyshevSolver(problem, options).run(report);
+}
+
+}  // namespace rodlab::solvers::statics

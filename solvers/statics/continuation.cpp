@@ -1,0 +1,47 @@
+#include "rodlab/solvers/statics/continuation.hpp"
+
+#include <algorithm>
+
+namespace rodlab::solvers::statics {
+
+ContinuationResult continue_load(const Continuation& walk, Eigen::VectorXd start) {
+  const ContinuationSteps& steps = walk.steps;
+  double lf = 0.0, lf_prev = 0.0, step = steps.first;
+  Eigen::VectorXd x = std::move(start), x_prev = x;
+  bool have_prev = false;
+  CorrectorResult last;
+  auto finish = [&](bool converged, std::string reason) {
+    ContinuationResult out;
+    out.converged = converged;
+    out.state = x;
+    out.load_factor = lf;
+    out.residual_norm = last.residual_norm;
+    out.reason = std::move(reason);
+    return out;
+  };
+  for (int attempt = 0; attempt < steps.max_attempts && lf < 1.0; ++attempt) {
+    const double target = std::min(1.0, lf + step);
+    const Eigen::VectorXd guess = have_prev
+                                      ? Eigen::VectorXd(x + (x - x_prev) * ((target - lf) / (lf - lf_prev)))
+                                      : walk.first_predictor(lf, target, x);
+    last = walk.correct(target, guess);
+    if (last.converged) {
+      x_prev = x;
+      lf_prev = lf;
+      x = last.state;
+      lf = target;
+      have_prev = true;
+      step = std::min(steps.growth * step, steps.max);
+      std::string why;
+      if (walk.stop && lf < 1.0 && walk.stop(lf, x, why)) return finish(false, why);
+    } else {
+      step *= 0.5;
+      if (step < steps.min)
+        return finish(false, "stalled at load factor " + std::to_string(lf) + " (" + last.reason + ")");
+    }
+  }
+  if (lf < 1.0) return finish(false, last.reason);
+  return finish(true, last.reason);
+}
+
+}  // namespace rodlab::solvers::statics
