@@ -127,12 +127,12 @@ struct KinsolSolver::Impl {
     std::string message;
   };
 
-  static int residual_callback(N_Vector u, N_Vector F, void* user_data) {
-    auto* call = static_cast<Call*>(user_data);
+  /// Runs a callback body: a KinsolRecoverableError becomes the recoverable flag 1 with its
+  /// message; any other exception is kept for rethrowing after KINSol returns (flag -1).
+  template <class Body>
+  static int guarded(Call* call, Body&& body) {
     try {
-      auto Fv = view(F);
-      (*call->residual)(view(u), Fv);
-      return Fv.allFinite() ? 0 : 1;  // non-finite: recoverable (KINSOL may retry)
+      return body();
     } catch (const KinsolRecoverableError& e) {
       call->message = e.what();
       return 1;
@@ -142,11 +142,20 @@ struct KinsolSolver::Impl {
     }
   }
 
+  static int residual_callback(N_Vector u, N_Vector F, void* user_data) {
+    auto* call = static_cast<Call*>(user_data);
+    return guarded(call, [&] {
+      auto Fv = view(F);
+      (*call->residual)(view(u), Fv);
+      return Fv.allFinite() ? 0 : 1;  // non-finite: recoverable (KINSOL may retry)
+    });
+  }
+
   static int jacobian_callback(N_Vector u, N_Vector F, SUNMatrix A, void* user_data, N_Vector,
                                N_Vector) {
     auto* call = static_cast<Call*>(user_data);
     Impl& self = *call->self;
-    try {
+    return guarded(call, [&] {
       SparseMatrix& J = self.J;
       std::fill(J.valuePtr(), J.valuePtr() + J.nonZeros(), 0.0);
       (*call->jacobian)(view(u), view(F), J);
@@ -161,13 +170,7 @@ struct KinsolSolver::Impl {
       std::copy(self.row_indices.begin(), self.row_indices.end(), SUNSparseMatrix_IndexValues(A));
       std::copy(values, values + J.nonZeros(), SUNSparseMatrix_Data(A));
       return 0;
-    } catch (const KinsolRecoverableError& e) {
-      call->message = e.what();
-      return 1;
-    } catch (...) {
-      call->error = std::current_exception();
-      return -1;
-    }
+    });
   }
 
   static void error_handler(int, const char* module, const char* function, char* msg, void* user_data) {
