@@ -26,8 +26,7 @@ loads::TendonPath tendon_path(const scene::Offset& offset, const std::optional<s
   return loads::TendonPath(offset.points, span ? span->s0 : 0.0, span ? span->s1 : length);
 }
 
-ActuatorTerm actuator_term(const StaticProblem& problem, const scene::Actuator& actuator, double t) {
-  const double L = problem.length();
+ActuatorTerm actuator_term(const scene::Actuator& actuator, double t, double L) {
   struct Convert {
     double t, L;
     ActuatorTerm operator()(const scene::Cable& c) const {
@@ -53,9 +52,7 @@ ActuatorTerm actuator_term(const StaticProblem& problem, const scene::Actuator& 
       return a;
     }
   };
-  ActuatorTerm term = std::visit(Convert{t, L}, actuator);
-  (void)problem;
-  return term;
+  return std::visit(Convert{t, L}, actuator);
 }
 
 }  // namespace
@@ -92,7 +89,7 @@ StaticProblem StaticProblem::from_scene(const scene::Scene& scene, double t) {
                                                              : loads::WrenchFrame::body;
     problem.set_distributed(w);
   }
-  for (const auto& actuator : scene.actuators) problem.add_actuator(actuator_term(problem, actuator, t));
+  for (const auto& actuator : scene.actuators) problem.add_actuator(actuator_term(actuator, t, problem.length()));
   return problem;
 }
 

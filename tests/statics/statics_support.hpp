@@ -96,6 +96,16 @@ inline StaticProblem fixed_ends(rod::ModelKind kind, double dx = 0.1 * Table21::
 }
 
 /// Wrench helpers.
+/// Closed form of pure bending about x with curvature kappa (constant xi = [kappa 0 0 0 0 1]):
+/// R(s) = rotation about x by kappa s, p(s) = (0, (cos(kappa s) - 1)/kappa, sin(kappa s)/kappa).
+inline SE3 bent_arc_pose(double kappa, double s) {
+  Eigen::Matrix4d g = Eigen::Matrix4d::Identity();
+  const double a = kappa * s;
+  g.block<3, 3>(0, 0) << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
+  g.block<3, 1>(0, 3) << 0.0, (std::cos(a) - 1.0) / kappa, std::sin(a) / kappa;
+  return SE3::from_matrix(g);
+}
+
 inline Vector6 wrench(const Vector3& moment, const Vector3& force) {
   return lie::se3::join(moment, force);
 }

@@ -54,6 +54,20 @@ double angle_y(const SE3& g) {
 
 }  // namespace
 
+/// The tip deflection x and rotation about y against their linear (Timoshenko) references,
+/// both within kLinearTol relative; returns the tip pose for further checks.
+const SE3& check_linear_tip(const StaticResult& r, ModelKind kind, double x_ref, double angle_ref,
+                            const char* label) {
+  const SE3& tip = r.centerline.back().pose;
+  const double ex = tip.translation().x() / x_ref - 1.0, ea = angle_y(tip) / angle_ref - 1.0;
+  BOOST_TEST(std::abs(ex) <= kLinearTol, kind_name(kind) << " " << describe(r) << ": x_tip " << tip.translation().x()
+                                                        << ", Timoshenko " << x_ref << ", rel err " << ex);
+  BOOST_TEST(std::abs(ea) <= kLinearTol, kind_name(kind) << " " << describe(r) << ": angle rel err " << ea);
+  BOOST_TEST_MESSAGE(label << " " << kind_name(kind) << " " << describe(r) << ": x_tip rel err " << ex
+                           << ", angle rel err " << ea);
+  return tip;
+}
+
 BOOST_AUTO_TEST_CASE(tip_force_timoshenko) {
   const double L = Table21::L, EI = Table21::EI, GA = Table21::GA;
   const double P = kLoad * EI / (L * L);
@@ -66,14 +80,8 @@ BOOST_AUTO_TEST_CASE(tip_force_timoshenko) {
       const int N = fine_nodes(s);
       const auto r = solve(problem, s.name, N);
       if (!check_result(r, N)) continue;
-      const SE3& tip = r.centerline.back().pose;
-      const double ex = tip.translation().x() / x_ref - 1.0, ea = angle_y(tip) / angle_ref - 1.0;
-      BOOST_TEST(std::abs(ex) <= kLinearTol, kind_name(kind) << " " << describe(r) << ": x_tip " << tip.translation().x()
-                                                            << ", Timoshenko " << x_ref << ", rel err " << ex);
-      BOOST_TEST(std::abs(ea) <= kLinearTol, kind_name(kind) << " " << describe(r) << ": angle rel err " << ea);
+      const SE3& tip = check_linear_tip(r, kind, x_ref, angle_ref, "tip force");
       BOOST_TEST(std::abs(tip.translation().y()) <= 1e-12 * L);
-      BOOST_TEST_MESSAGE("tip force " << kind_name(kind) << " " << describe(r) << ": x_tip rel err " << ex
-                                      << ", angle rel err " << ea);
     }
   }
   // The shear term is resolved: without it the Cosserat deflection would be 0.57 % off.
@@ -93,13 +101,7 @@ BOOST_AUTO_TEST_CASE(uniform_load_timoshenko) {
       const int N = fine_nodes(s);
       const auto r = solve(problem, s.name, N);
       if (!check_result(r, N)) continue;
-      const SE3& tip = r.centerline.back().pose;
-      const double ex = tip.translation().x() / x_ref - 1.0, ea = angle_y(tip) / angle_ref - 1.0;
-      BOOST_TEST(std::abs(ex) <= kLinearTol, kind_name(kind) << " " << describe(r) << ": x_tip " << tip.translation().x()
-                                                            << ", Timoshenko " << x_ref << ", rel err " << ex);
-      BOOST_TEST(std::abs(ea) <= kLinearTol, kind_name(kind) << " " << describe(r) << ": angle rel err " << ea);
-      BOOST_TEST_MESSAGE("uniform load " << kind_name(kind) << " " << describe(r) << ": x_tip rel err " << ex
-                                         << ", angle rel err " << ea);
+      check_linear_tip(r, kind, x_ref, angle_ref, "uniform load");
     }
   }
 }

@@ -35,16 +35,9 @@ using loads::WrenchFrame;
 
 BOOST_AUTO_TEST_CASE(clamped_at_arc_end_kappa_l_3) {
   const double L = Table21::L, kappa = 3.0 / L;
-  auto arc = [&](double s) {
-    Eigen::Matrix4d g = Eigen::Matrix4d::Identity();
-    const double a = kappa * s;
-    g.block<3, 3>(0, 0) << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
-    g.block<3, 1>(0, 3) << 0.0, (std::cos(a) - 1.0) / kappa, std::sin(a) / kappa;
-    return g;
-  };
   for (const ModelKind kind : {ModelKind::cosserat, ModelKind::kirchhoff}) {
     StaticProblem problem = table21_problem(kind);
-    problem.set_tip_clamped(SE3::from_matrix(arc(L)));
+    problem.set_tip_clamped(bent_arc_pose(kappa, L));
     const Vector6 expected = (Vector6() << Table21::EI * kappa, 0, 0, 0, 0, 0).finished();
     const Vector6 scale = problem.wrench_scale();
     for (const auto& s : statics_schemes_under_test()) {
@@ -55,7 +48,7 @@ BOOST_AUTO_TEST_CASE(clamped_at_arc_end_kappa_l_3) {
         if (!check_result(r, N)) continue;
         const double ew = (r.base_wrench - expected).cwiseQuotient(scale).norm() / expected.cwiseQuotient(scale).norm();
         double ep = 0.0;
-        for (const auto& c : r.centerline) ep = std::max(ep, pose_error(c.pose, arc(c.s)).max());
+        for (const auto& c : r.centerline) ep = std::max(ep, pose_error(c.pose, bent_arc_pose(kappa, c.s)).max());
         BOOST_TEST(ew <= 1e-9, kind_name(kind) << " " << describe(r) << ": base wrench error " << ew);
         BOOST_TEST(ep <= 1e-10, kind_name(kind) << " " << describe(r) << ": node pose error " << ep);
       }
