@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
 namespace rodlab::cli {
@@ -16,11 +17,17 @@ result::StaticResult solve_static(const scene::Scene& scene, const StaticRun& ru
   return solvers::statics::solve_static(scene, options);
 }
 
-result::DynamicResult solve_dynamic(const scene::Scene& /*scene*/, const DynamicRun& run) {
-  // Dynamics solvers arrive with the dynamics issue (#4): dispatch on run.scheme.name here.
-  throw std::logic_error("no dynamics solver is linked for scheme '" +
-                         std::string(run.scheme.name) +
-                         "' although the scheme catalogue marks it available");
+result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicRun& run) {
+  solvers::dynamics::DynamicSolveOptions options;
+  options.scheme = std::string(run.scheme.name);
+  options.nodes = run.nodes;
+  options.dt = run.dt.value;
+  options.t_end = run.t_end;
+  options.output_every = run.output_every;
+  options.tol = run.tol;
+  options.max_iterations = run.max_iterations;
+  if (scene.dynamics) options.initial = scene.dynamics->initial;
+  return solvers::dynamics::solve_dynamic(scene, options);
 }
 
 }  // namespace rodlab::cli

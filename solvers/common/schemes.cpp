@@ -24,7 +24,7 @@ constexpr std::array<SchemeInfo, 12> kSchemes{{
     {"kinsol", Problem::statics, ">=4", true, true,
      "reference: Lie-group Hermite-Simpson (RKMK Lobatto IIIA) collocation, KINSOL + KLU", ""},
     {"variational", Problem::dynamics, "2", false, false,
-     "explicit discrete variational Lie-group integrator (thesis Algorithm 1)", kDynamicsIssue},
+     "explicit discrete variational Lie-group integrator (thesis Algorithm 1)", ""},
     {"implicit-midpoint", Problem::dynamics, "2", true, false,
      "implicit midpoint in time, explicit RKMK in space, single shooting (thesis Algorithm 2)",
      kDynamicsIssue},

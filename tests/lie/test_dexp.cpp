@@ -139,6 +139,7 @@ BOOST_AUTO_TEST_CASE(closed_forms_match_long_double_series) {
 BOOST_AUTO_TEST_CASE(apply_forms_and_blocks) {
   Worst so3_apply("so3::dexp_apply - dexp y"), so3_inv_apply("so3::dexp_inv_apply - dexp_inv y"),
       se3_apply("se3::dexp_apply - dexp y"), se3_inv_apply("se3::dexp_inv_apply - dexp_inv y"),
+      se3_inv_t_apply("se3::dexp_inv_transpose_apply - dexp_inv^T y"),
       blocks("se3 dexp, dexp_inv diagonal blocks - so3 ones"),
       zero_block("se3 dexp, dexp_inv upper-right block");
   const auto& x = twists();
@@ -166,6 +167,10 @@ BOOST_AUTO_TEST_CASE(apply_forms_and_blocks) {
       se3_inv_apply.update(max_abs_diff(se3::dexp_inv_apply(xi, y), Vector6(Dinv * y)) /
                                ((1.0 + max_abs(Dinv)) * 4.0),
                            label);
+      se3_inv_t_apply.update(max_abs_diff(se3::dexp_inv_transpose_apply(xi, y),
+                                          Vector6(Dinv.transpose() * y)) /
+                                 ((1.0 + max_abs(Dinv)) * 4.0),
+                             label);
       block = std::max(block, std::max(max_abs_diff(Dinv.topLeftCorner<3, 3>(), Ainv),
                                        max_abs_diff(Dinv.bottomRightCorner<3, 3>(), Ainv)) /
                                   (1.0 + max_abs(Ainv)));
@@ -174,7 +179,8 @@ BOOST_AUTO_TEST_CASE(apply_forms_and_blocks) {
     blocks.update(block, label);
     zero_block.update(zero, label);
   }
-  for (Worst* w : {&so3_apply, &so3_inv_apply, &se3_apply, &se3_inv_apply, &blocks})
+  for (Worst* w :
+       {&so3_apply, &so3_inv_apply, &se3_apply, &se3_inv_apply, &se3_inv_t_apply, &blocks})
     w->check(kAlgebraTol);
   zero_block.check(0.0);
 }

@@ -102,6 +102,23 @@ inline Vector6 dexp_inv_apply(const Vector6& xi, const Vector6& y) {
   return join(top, C_yw + Ainv_yv);
 }
 
+/// dexp^-T_xi lambda for a wrench lambda, without forming a matrix: the discrete conjugate
+/// momentum and stress of the variational integrator ((3.40), (3.42)). With dexp^-1 = [A^-1 0;
+/// C A^-1], its transpose is [A^-T C^T; 0 A^-T], A^-T = I + W/2 + e W^2,
+/// C^T = V/2 + e (W V + V W) + (w.v) f W^2.
+inline Vector6 dexp_inv_transpose_apply(const Vector6& xi, const Vector6& lambda) {
+  const Vector3 w = xi.head<3>(), v = xi.tail<3>();
+  const Vector3 m = lambda.head<3>(), f = lambda.tail<3>();
+  const double t = w.norm();
+  const double e = coefficients::e(t);
+  const Vector3 w_m = w.cross(m), w_f = w.cross(f), v_f = v.cross(f);
+  const Vector3 AinvT_m = m + 0.5 * w_m + e * w.cross(w_m);
+  const Vector3 AinvT_f = f + 0.5 * w_f + e * w.cross(w_f);
+  const Vector3 CT_f = 0.5 * v_f + e * (v.cross(w_f) + w.cross(v_f)) +
+                       w.dot(v) * coefficients::f(t) * w.cross(w_f);
+  return join(AinvT_m + CT_f, AinvT_f);
+}
+
 /// dexp_xi as a 6x6 matrix (closed form).
 inline Matrix6 dexp(const Vector6& xi) {
   const Vector3 w = xi.head<3>(), v = xi.tail<3>();

@@ -1,0 +1,45 @@
+#include "rodlab/solvers/dynamics/energy.hpp"
+
+#include "rodlab/rod/energies.hpp"
+
+namespace rodlab::solvers::dynamics {
+namespace {
+
+template <class Density>
+double trapezoid(std::size_t n, double ds, Density density) {
+  double sum = 0.0;
+  for (std::size_t j = 0; j < n; ++j) sum += (j == 0 || j + 1 == n ? 0.5 : 1.0) * density(j);
+  return sum * ds;
+}
+
+}  // namespace
+
+double kinetic_energy(const rod::RodModel& model, std::span<const Vector6> eta, double ds) {
+  return trapezoid(eta.size(), ds,
+                   [&](std::size_t j) { return rod::kinetic_energy_density(model, eta[j]); });
+}
+
+double strain_energy_segments(const rod::RodModel& model, std::span<const Vector6> xi, double ds) {
+  double sum = 0.0;
+  for (const Vector6& x : xi) sum += rod::strain_energy_density(model, x);
+  return sum * ds;
+}
+
+double strain_energy_nodes(const rod::RodModel& model, std::span<const Vector6> xi, double ds) {
+  return trapezoid(xi.size(), ds,
+                   [&](std::size_t j) { return rod::strain_energy_density(model, xi[j]); });
+}
+
+double gravity_energy(const DynamicProblem& problem, std::span<const SE3> g, double ds) {
+  const Vector3 w = problem.weight_per_length();
+  if (w.isZero()) return 0.0;
+  const SE3& base = problem.base();
+  const auto& model = problem.model();
+  return trapezoid(g.size(), ds, [&](std::size_t j) {
+    const double s = ds * static_cast<double>(j);
+    const Vector3 p_ref = rod::reference_pose(model, base, s).translation();
+    return -w.dot(g[j].translation() - p_ref);
+  });
+}
+
+}  // namespace rodlab::solvers::dynamics

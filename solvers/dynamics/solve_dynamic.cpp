@@ -1,0 +1,133 @@
+#include "rodlab/solvers/dynamics/solve_dynamic.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include "rodlab/rod/energies.hpp"
+#include "rodlab/solvers/schemes.hpp"
+#include "rodlab/solvers/dynamics/variational.hpp"
+#include "rodlab/solvers/statics/solve_static.hpp"
+
+namespace rodlab::solvers::dynamics {
+namespace {
+
+/// Static-equilibrium start: rkmk-rk4 on a grid refined by this factor, sampled at the nodes.
+constexpr int kStaticRefinement = 4;
+/// A run is unstable once kinetic + strain energy exceed this multiple of the energy the scene
+/// can account for (see energy_budget).
+constexpr double kUnstableFactor = 1e3;
+
+/// Node poses of the initial state: the reference configuration, or the static equilibrium
+/// under the t = 0 loads.
+std::vector<SE3> initial_poses(const scene::Scene& scene, const DynamicProblem& problem,
+                               const DynamicSolveOptions& options, std::string& failure) {
+  const int n = options.nodes;
+  const double ds = problem.length() / (n - 1);
+  std::vector<SE3> g(n);
+  if (options.initial == scene::Initial::straight) {
+    for (int j = 0; j < n; ++j) g[j] = rod::reference_pose(problem.model(), problem.base(), j * ds);
+    return g;
+  }
+  statics::StaticSolveOptions so;
+  so.scheme = "rkmk-rk4";
+  so.nodes = kStaticRefinement * (n - 1) + 1;
+  so.tol = std::min(options.tol, 1e-10);
+  so.max_iterations = std::max(options.max_iterations, 50);
+  const auto eq = statics::solve_static(scene, so);
+  if (!eq.converged) failure = "the initial static equilibrium did not converge: " + eq.reason;
+  for (int j = 0; j < n; ++j) g[j] = eq.centerline[kStaticRefinement * j].pose;
+  return g;
+}
+
+std::unique_ptr<Stepper> make_stepper(const DynamicProblem& problem,
+                                      const DynamicSolveOptions& options, std::span<const SE3> g0) {
+  if (options.scheme == "variational")
+    return make_variational(problem, {options.nodes, std::min(options.tol, 1e-12), 20}, g0);
+  const auto info = find_scheme(options.scheme);
+  if (!info || info->problem != Problem::dynamics)
+    throw std::invalid_argument("unknown dynamics scheme '" + options.scheme + "' (valid: " +
+                                scheme_names(Problem::dynamics) + ")");
+  throw std::invalid_argument("scheme '" + options.scheme + "' is not available yet");
+}
+
+/// An energy scale the run can legitimately reach: the strain energy of a quarter-circle bend,
+/// plus what gravity and the inputs have exchanged so far, plus the initial energy.
+double energy_budget(const DynamicProblem& problem, const Energy& e0, const Energy& e) {
+  const auto& K = problem.model().K_diag();
+  const double L = problem.length();
+  const double bend = 0.5 * std::min(K[0], K[1]) * std::pow(0.5 * std::numbers::pi / L, 2) * L;
+  return bend + std::abs(e.gravity) + std::abs(e.work_in) + std::abs(e0.mechanical());
+}
+
+}  // namespace
+
+result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolveOptions& options) {
+  if (options.nodes < 3) throw std::invalid_argument("nodes must be >= 3");
+  if (!(options.dt > 0.0) || !std::isfinite(options.dt))
+    throw std::invalid_argument("dt must be > 0");
+  if (!(options.t_end > 0.0) || !std::isfinite(options.t_end))
+    throw std::invalid_argument("t_end must be > 0");
+  if (options.output_every < 1) throw std::invalid_argument("output_every must be >= 1");
+  const DynamicProblem problem = DynamicProblem::from_scene(scene);
+
+  result::DynamicResult out;
+  out.scene = scene.name;
+  out.scheme = options.scheme;
+  out.nodes = options.nodes;
+  // Equal steps that end exactly at t_end (a variational integrator keeps its step).
+  const long steps = std::max(1L, std::lround(std::ceil(options.t_end / options.dt - 1e-9)));
+  const double dt = options.t_end / static_cast<double>(steps);
+  out.dt = dt;
+  const auto start = std::chrono::steady_clock::now();
+  std::string failure;
+  const std::vector<SE3> g0 = initial_poses(scene, problem, options, failure);
+  const std::unique_ptr<Stepper> stepper = make_stepper(problem, options, g0);
+
+  const Energy e0 = stepper->energy();
+  auto record = [&](double t) {
+    const Energy e = stepper->energy();
+    out.t.push_back(t);
+    out.tip_position.push_back(stepper->tip_position());
+    out.energy.kinetic.push_back(e.kinetic);
+    out.energy.strain.push_back(e.strain);
+    out.energy.gravity.push_back(e.gravity);
+    out.energy.dissipated.push_back(e.dissipated);
+    out.energy.work_in.push_back(e.work_in);
+    out.energy.total.push_back(e.total());
+    out.max_det_deviation.push_back(stepper->max_det_deviation());
+    const double active = e.kinetic + e.strain;
+    if (!std::isfinite(e.total()) || !out.tip_position.back().allFinite())
+      failure = "unstable: the state became non-finite by t = " + std::to_string(t) + " s";
+    else if (active > kUnstableFactor * energy_budget(problem, e0, e))
+      failure = "unstable: kinetic + strain energy grew to " + std::to_string(active) +
+                " J by t = " + std::to_string(t) + " s";
+  };
+  record(0.0);
+  long done = 0;
+  double t = 0.0;
+  while (failure.empty() && done < steps) {
+    const double t1 = done + 1 == steps ? options.t_end : static_cast<double>(done + 1) * dt;
+    const StepStatus status = stepper->step(t, dt);
+    ++done;
+    t = t1;
+    if (!status.ok) {
+      failure = status.reason;
+      record(t);
+      break;
+    }
+    if (done % options.output_every == 0 || done == steps) record(t);
+  }
+  out.steps = done;
+  out.converged = failure.empty();
+  out.reason = failure;
+  out.final_centerline = stepper->centerline();
+  out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.real_time_ratio = t > 0.0 ? out.wall_time_s / t : 0.0;
+  return out;
+}
+
+}  // namespace rodlab::solvers::dynamics

@@ -1,0 +1,69 @@
+#include "rodlab/solvers/dynamics/time_step.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+
+#include "rodlab/rod/characteristics.hpp"
+
+namespace rodlab::solvers::dynamics {
+namespace {
+
+using Matrix6c = Eigen::Matrix<std::complex<double>, 6, 6>;
+/// Wave numbers sampled in [0, pi] (omega(k) is smooth; the maximum sits at k = pi or inside).
+constexpr int kWaveNumbers = 256;
+/// Fraction of the first bending period taken as the implicit schemes' automatic step.
+constexpr double kStepsPerPeriod = 40.0;
+
+}  // namespace
+
+double variational_max_frequency(const rod::RodModel& model, int nodes) {
+  if (nodes < 2) throw std::invalid_argument("nodes must be >= 2");
+  const double ds = model.length() / (nodes - 1);
+  const Vector6& xs = model.xi_star();
+  const lie::Matrix6 A = SE3::exp(ds * xs).inverse().Ad();
+  const lie::Matrix6 D = lie::se3::dexp_inv(-ds * xs);
+  const lie::Matrix6 KD = model.K_diag().asDiagonal() * D;
+  const lie::Matrix6 DtKD = D.transpose() * KD;
+  const Vector6 m_inv_sqrt = model.M_diag().cwiseSqrt().cwiseInverse();
+  double omega2 = 0.0;
+  for (int i = 0; i <= kWaveNumbers; ++i) {
+    const double k = std::numbers::pi * i / kWaveNumbers;
+    const Matrix6c C = std::polar(1.0, k) * Matrix6c::Identity() - A.cast<std::complex<double>>();
+    Matrix6c S = C.adjoint() * DtKD.cast<std::complex<double>>() * C / ds;
+    S = m_inv_sqrt.asDiagonal() * S * m_inv_sqrt.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Matrix6c> eig(S, Eigen::EigenvaluesOnly);
+    omega2 = std::max(omega2, eig.eigenvalues().maxCoeff() / ds);
+  }
+  return std::sqrt(omega2);
+}
+
+double variational_stable_step(const DynamicProblem& problem, int nodes) {
+  const auto& model = problem.model();
+  const double omega = variational_max_frequency(model, nodes);
+  double tau = 0.0;  // Kelvin-Voigt relaxation time, the largest over the components
+  for (int i = 0; i < 6; ++i) tau = std::max(tau, model.V_diag()[i] / model.K_diag()[i]);
+  // (3.11) laminar drag rate, the largest over the components (at a velocity small enough that
+  // the turbulent part, quadratic in it, vanishes)
+  constexpr double kSmall = 1e-9;
+  double drag = 0.0;
+  for (int i = 0; i < 6; ++i) {
+    const double rate = -problem.drag_load(kSmall * Vector6::Unit(i))[i] / (kSmall * model.M_diag()[i]);
+    drag = std::max(drag, rate);
+  }
+  // omega^2 dt^2 + 2 b dt - 4 = 0 with b = tau omega^2 + drag, positive root.
+  const double b = tau * omega * omega + drag;
+  return 4.0 / (b + std::sqrt(b * b + 4.0 * omega * omega));
+}
+
+double auto_time_step(const DynamicProblem& problem, std::string_view scheme, int nodes) {
+  if (scheme == "variational") return kVariationalSafety * variational_stable_step(problem, nodes);
+  const auto c = rod::characteristics(problem.model(), nodes, rod::TipSupport::free);
+  return 1.0 / (c.first_bending_frequency_hz * kStepsPerPeriod);
+}
+
+}  // namespace rodlab::solvers::dynamics

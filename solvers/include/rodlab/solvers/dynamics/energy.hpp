@@ -1,0 +1,32 @@
+#pragma once
+// The energies of the dynamic result (interface spec section 4), computed by the same formulas
+// for every scheme on its own grid:
+//   kinetic (3.5)  T = int 1/2 <eta, M eta> ds            trapezoid over the nodes
+//   strain (2.28)  U = int 1/2 <xi - xi*, K (xi - xi*)>   midpoint over segments (strains on
+//                                                         segments) or trapezoid (on nodes)
+//   gravity        P = -int rho_eff A <g, p - p*> ds      trapezoid, zero in the reference pose
+// `dissipated` (viscous and drag power) and `work_in` (tip wrench, distributed wrench, actuators)
+// are running integrals kept by each scheme with its own quadrature in time.
+#include <span>
+
+#include "rodlab/lie/se3.hpp"
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+
+namespace rodlab::solvers::dynamics {
+
+struct Energy {
+  double kinetic = 0.0, strain = 0.0, gravity = 0.0, dissipated = 0.0, work_in = 0.0;
+  /// kinetic + strain + gravity + dissipated - work_in: constant for an exact solution.
+  double total() const { return kinetic + strain + gravity + dissipated - work_in; }
+  /// kinetic + strain + gravity.
+  double mechanical() const { return kinetic + strain + gravity; }
+};
+
+/// Trapezoid weights: 1/2 at both ends, 1 inside, times ds.
+double kinetic_energy(const rod::RodModel& model, std::span<const Vector6> eta_nodes, double ds);
+double strain_energy_segments(const rod::RodModel& model, std::span<const Vector6> xi_segments,
+                              double ds);
+double strain_energy_nodes(const rod::RodModel& model, std::span<const Vector6> xi_nodes, double ds);
+double gravity_energy(const DynamicProblem& problem, std::span<const SE3> g_nodes, double ds);
+
+}  // namespace rodlab::solvers::dynamics

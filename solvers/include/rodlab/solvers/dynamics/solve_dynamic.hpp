@@ -1,0 +1,28 @@
+#pragma once
+// One dynamic simulation: the initial state, the time loop shared by every scheme, the output
+// series, and the detection of non-convergence and instability (reported in the result, never
+// as NaN or a silent success).
+#include <string>
+
+#include "rodlab/result/dynamic_result.hpp"
+#include "rodlab/scene/scene.hpp"
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+
+namespace rodlab::solvers::dynamics {
+
+struct DynamicSolveOptions {
+  std::string scheme = "variational";
+  int nodes = 20;
+  double dt = 0.0;          ///< > 0 (resolve `auto` with auto_time_step first)
+  double t_end = 0.0;       ///< > 0
+  int output_every = 1;     ///< record every k-th step (and the last one)
+  double tol = 1e-10;       ///< nonlinear solves inside a step
+  int max_iterations = 50;  ///< per nonlinear solve
+  scene::Initial initial = scene::Initial::straight;
+};
+
+/// Runs the simulation. Throws std::invalid_argument for bad options or unsupported scene
+/// features; a failed step or an instability ends the run with converged = false and the reason.
+result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolveOptions& options);
+
+}  // namespace rodlab::solvers::dynamics

@@ -1,0 +1,36 @@
+#pragma once
+// What the time loop (solve_dynamic.hpp) needs from a dynamics scheme. A stepper owns its state
+// (allocated once), advances it by one step without allocating, and reports the quantities of
+// the result file through the shared formulas of energy.hpp.
+#include <string>
+#include <vector>
+
+#include "rodlab/result/static_result.hpp"
+#include "rodlab/solvers/dynamics/energy.hpp"
+
+namespace rodlab::solvers::dynamics {
+
+struct StepStatus {
+  bool ok = true;
+  std::string reason;  ///< why the step failed (no convergence, instability)
+  int iterations = 0;  ///< nonlinear iterations or shooting integrations spent on the step
+  static StepStatus failed(std::string why) { return {false, std::move(why), 0}; }
+};
+
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  /// Advances the state from t to t + dt (inputs evaluated inside [t, t + dt] as the scheme
+  /// prescribes) and adds the step's dissipated energy and input work to the ledger.
+  virtual StepStatus step(double t, double dt) = 0;
+  /// Energies of the current state (kinetic, strain, gravity) and the running dissipation and
+  /// input work.
+  virtual Energy energy() const = 0;
+  virtual lie::Vector3 tip_position() const = 0;
+  /// max |det R - 1| over the nodes.
+  virtual double max_det_deviation() const = 0;
+  /// Node poses and strains, base first.
+  virtual std::vector<result::CenterlineSample> centerline() const = 0;
+};
+
+}  // namespace rodlab::solvers::dynamics
