@@ -27,7 +27,7 @@ constexpr std::array<SchemeInfo, 12> kSchemes{{
      "explicit discrete variational Lie-group integrator (thesis Algorithm 1)", ""},
     {"implicit-midpoint", Problem::dynamics, "2", true, false,
      "implicit midpoint in time, explicit RKMK in space, single shooting (thesis Algorithm 2)",
-     kDynamicsIssue},
+     ""},
     {"implicit-midpoint-collocation", Problem::dynamics, "2", true, false,
      "implicit midpoint in time, each step's BVP solved globally by KINSOL + KLU", kDynamicsIssue},
     {"bdf-alpha", Problem::dynamics, "2", true, false,

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <variant>
 
+#include "rodlab/solvers/common/tendon_law.hpp"
+
 namespace rodlab::solvers::dynamics {
 namespace {
 
@@ -90,6 +92,20 @@ double DynamicProblem::actuator_power(const Vector6& xi, const Vector6& xi_dot, 
   for (const auto& a : actuators_)
     if (a.path.active(s)) P -= a.force(t) * a.path.unit_wrench(s, xi).dot(xi_dot);
   return P;
+}
+
+Vector6 DynamicProblem::solve_strain_with_actuators(const Vector6& Kt, const Vector6& xi_ref,
+                                                    const Vector6& Lambda, double s,
+                                                    double t) const {
+  return solve_tendon_law(Kt.asDiagonal().toDenseMatrix(), xi_ref, Lambda, is_kirchhoff(),
+                          [&](const Vector6& xi, Vector6& r, lie::Matrix6& J) {
+                            for (const auto& a : actuators_) {
+                              if (!a.path.active(s)) continue;
+                              const double F = a.force(t);
+                              r += F * a.path.unit_wrench(s, xi);
+                              J += F * a.path.unit_wrench_jacobian(s, xi);
+                            }
+                          });
 }
 
 std::vector<double> DynamicProblem::entry_points() const {

@@ -9,6 +9,7 @@
 
 #include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/schemes.hpp"
+#include "rodlab/solvers/dynamics/implicit_midpoint.hpp"
 #include "rodlab/solvers/dynamics/variational.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
@@ -21,16 +22,17 @@ constexpr int kStaticRefinement = 4;
 /// can account for (see energy_budget).
 constexpr double kUnstableFactor = 1e3;
 
-/// Node poses of the initial state: the reference configuration, or the static equilibrium
-/// under the t = 0 loads.
-std::vector<SE3> initial_poses(const scene::Scene& scene, const DynamicProblem& problem,
-                               const DynamicSolveOptions& options, std::string& failure) {
+/// The initial state at rest: the reference configuration, or the static equilibrium under the
+/// t = 0 loads.
+RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem,
+                        const DynamicSolveOptions& options, std::string& failure) {
   const int n = options.nodes;
   const double ds = problem.length() / (n - 1);
-  std::vector<SE3> g(n);
+  RestState state{std::vector<SE3>(n), std::vector<Vector6>(n, problem.model().xi_star())};
   if (options.initial == scene::Initial::straight) {
-    for (int j = 0; j < n; ++j) g[j] = rod::reference_pose(problem.model(), problem.base(), j * ds);
-    return g;
+    for (int j = 0; j < n; ++j)
+      state.g[j] = rod::reference_pose(problem.model(), problem.base(), j * ds);
+    return state;
   }
   statics::StaticSolveOptions so;
   so.scheme = "rkmk-rk4";
@@ -39,14 +41,22 @@ std::vector<SE3> initial_poses(const scene::Scene& scene, const DynamicProblem& 
   so.max_iterations = std::max(options.max_iterations, 50);
   const auto eq = statics::solve_static(scene, so);
   if (!eq.converged) failure = "the initial static equilibrium did not converge: " + eq.reason;
-  for (int j = 0; j < n; ++j) g[j] = eq.centerline[kStaticRefinement * j].pose;
-  return g;
+  if (eq.centerline.size() != static_cast<std::size_t>(kStaticRefinement * (n - 1) + 1))
+    return state;  // no solution to start from; failure says why
+  for (int j = 0; j < n; ++j) {
+    state.g[j] = eq.centerline[kStaticRefinement * j].pose;
+    state.xi[j] = eq.centerline[kStaticRefinement * j].twist;
+  }
+  return state;
 }
 
 std::unique_ptr<Stepper> make_stepper(const DynamicProblem& problem,
-                                      const DynamicSolveOptions& options, std::span<const SE3> g0) {
+                                      const DynamicSolveOptions& options, const RestState& initial) {
   if (options.scheme == "variational")
-    return make_variational(problem, {options.nodes, std::min(options.tol, 1e-12), 20}, g0);
+    return make_variational(problem, {options.nodes, std::min(options.tol, 1e-12), 20}, initial);
+  if (options.scheme == "implicit-midpoint")
+    return make_implicit_midpoint(problem, {options.nodes, options.tol, options.max_iterations},
+                                  initial);
   const auto info = find_scheme(options.scheme);
   if (!info || info->problem != Problem::dynamics)
     throw std::invalid_argument("unknown dynamics scheme '" + options.scheme + "' (valid: " +
@@ -84,8 +94,8 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   out.dt = dt;
   const auto start = std::chrono::steady_clock::now();
   std::string failure;
-  const std::vector<SE3> g0 = initial_poses(scene, problem, options, failure);
-  const std::unique_ptr<Stepper> stepper = make_stepper(problem, options, g0);
+  const RestState initial = initial_state(scene, problem, options, failure);
+  const std::unique_ptr<Stepper> stepper = make_stepper(problem, options, initial);
 
   const Energy e0 = stepper->energy();
   auto record = [&](double t) {

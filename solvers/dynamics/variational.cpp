@@ -27,9 +27,10 @@ Matrix6 coad_bar(const Vector6& w) {
 class Variational final : public Stepper {
  public:
   Variational(const DynamicProblem& problem, const VariationalOptions& options,
-              std::span<const SE3> g0)
+              const RestState& initial)
       : P_(problem), opt_(options), n_(options.nodes), ds_(problem.length() / (n_ - 1)) {
     if (n_ < 3) throw std::invalid_argument("variational: nodes must be >= 3");
+    const auto& g0 = initial.g;
     if (static_cast<int>(g0.size()) != n_)
       throw std::invalid_argument("variational: expected " + std::to_string(n_) +
                                   " initial poses, got " + std::to_string(g0.size()));
@@ -91,8 +92,11 @@ class Variational final : public Stepper {
         if (e.node == j) force += P_.entry_load(e.s, xi_[j < n_ - 1 ? j : j - 1], t1);
       mu_[j] = E_[j].coAd_apply(mu_[j]) + (dt / w) * force;
       if (!solve_velocity(j, dt)) {
-        return StepStatus::failed("variational: Newton on (3.42) did not converge at node " +
-                                  std::to_string(j) + " (t = " + std::to_string(t1) + " s)");
+        // (3.42) is a small perturbation of M eta = mu for any step below the stability limit
+        // (Newton converges in 2-3 iterations); divergence means the explicit scheme blew up.
+        return StepStatus::failed("unstable: variational: Newton on (3.42) diverged at node " +
+                                  std::to_string(j) + " (t = " + std::to_string(t1) +
+                                  " s, dt = " + std::to_string(dt) + " s)");
       }
     }
     ledger_.dissipated += dt * dissipated;
@@ -177,8 +181,8 @@ class Variational final : public Stepper {
 
 std::unique_ptr<Stepper> make_variational(const DynamicProblem& problem,
                                           const VariationalOptions& options,
-                                          std::span<const SE3> g0) {
-  return std::make_unique<Variational>(problem, options, g0);
+                                          const RestState& initial) {
+  return std::make_unique<Variational>(problem, options, initial);
 }
 
 }  // namespace rodlab::solvers::dynamics

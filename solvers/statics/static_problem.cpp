@@ -8,6 +8,8 @@
 
 #include <Eigen/LU>
 
+#include "rodlab/solvers/common/tendon_law.hpp"
+
 namespace rodlab::solvers::statics {
 namespace {
 
@@ -224,29 +226,15 @@ Vector6 StaticProblem::strain(const Vector6& Lambda, double s, Mask mask) const 
   for (std::size_t k = 0; k < actuators_.size(); ++k)
     if ((mask >> k) & 1U && actuators_[k].kind == ActuatorKind::muscle)
       Kt += transported_stiffness(actuators_[k].embedded_stiffness, actuators_[k].path.offset(s));
-  const bool kirchhoff = model_.is_kirchhoff();
-  auto residual_and_jacobian = [&](const Vector6& xi, Vector6& r, Matrix6& J) {
-    r = Kt * (xi - xs) - Lambda;
-    J = Kt;
-    for (std::size_t k = 0; k < actuators_.size(); ++k) {
-      if (!((mask >> k) & 1U)) continue;
-      const double F = axial_force(static_cast<int>(k));
-      r += F * actuators_[k].path.unit_wrench(s, xi);
-      J += F * actuators_[k].path.unit_wrench_jacobian(s, xi);
-    }
-  };
-  Vector6 xi = xs, r;
-  Matrix6 J;
-  for (int it = 0; it < 30; ++it) {
-    residual_and_jacobian(xi, r, J);
-    Vector6 dxi = Vector6::Zero();
-    if (kirchhoff) dxi.head<3>() = -J.topLeftCorner<3, 3>().partialPivLu().solve(Vector3(r.head<3>()));
-    else dxi = -J.partialPivLu().solve(r);
-    xi += dxi;
-    if (!xi.allFinite()) break;
-    if (dxi.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + (xi - xs).lpNorm<Eigen::Infinity>())) break;
-  }
-  return xi;
+  return solve_tendon_law(Kt, xs, Lambda, model_.is_kirchhoff(),
+                          [&](const Vector6& xi, Vector6& r, Matrix6& J) {
+                            for (std::size_t k = 0; k < actuators_.size(); ++k) {
+                              if (!((mask >> k) & 1U)) continue;
+                              const double F = axial_force(static_cast<int>(k));
+                              r += F * actuators_[k].path.unit_wrench(s, xi);
+                              J += F * actuators_[k].path.unit_wrench_jacobian(s, xi);
+                            }
+                          });
 }
 
 Vector6 StaticProblem::rod_wrench(const Vector6& Lambda, const Vector6& xi, double s, Mask mask) const {

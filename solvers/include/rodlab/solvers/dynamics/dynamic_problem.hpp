@@ -83,6 +83,17 @@ class DynamicProblem {
     if (!actuators_.empty()) W += actuator_wrench(xi, s, t);
     return W;
   }
+  /// Solves Kt (xi - xi_ref) + sum_k F_k(t) c_k(xi) = Lambda for the strain, Kt diagonal
+  /// (an implicit step's K + c V); Kirchhoff rods solve for omega and keep nu = nu_ref.
+  Vector6 solve_strain(const Vector6& Kt, const Vector6& xi_ref, const Vector6& Lambda, double s,
+                       double t) const {
+    if (actuators_.empty()) {
+      Vector6 xi = xi_ref + Lambda.cwiseQuotient(Kt);
+      if (is_kirchhoff()) xi.tail<3>() = xi_ref.tail<3>();
+      return xi;
+    }
+    return solve_strain_with_actuators(Kt, xi_ref, Lambda, s, t);
+  }
   /// Point wrench on the rod where cables enter from outside at s0 > 0: the rod's internal
   /// wrench is continuous there, so the node that carries the jump of the total internal wrench
   /// gets it back as an external load, -F c(xi) (compare StaticProblem::entry_jump).
@@ -90,6 +101,8 @@ class DynamicProblem {
   Vector6 entry_load(double s_entry, const Vector6& xi, double t) const;
 
  private:
+  Vector6 solve_strain_with_actuators(const Vector6& Kt, const Vector6& xi_ref,
+                                      const Vector6& Lambda, double s, double t) const;
   DynamicProblem(rod::RodModel model, SE3 base) : model_(std::move(model)), base_(base) {}
 
   rod::RodModel model_;

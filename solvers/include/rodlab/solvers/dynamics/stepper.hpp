@@ -10,6 +10,12 @@
 
 namespace rodlab::solvers::dynamics {
 
+/// A state at rest: node poses and node strains, base first.
+struct RestState {
+  std::vector<SE3> g;
+  std::vector<Vector6> xi;
+};
+
 struct StepStatus {
   bool ok = true;
   std::string reason;  ///< why the step failed (no convergence, instability)

@@ -16,7 +16,6 @@
 // makes the scheme first order in space). Conservative loads are evaluated at the new
 // configuration, drag at the old velocity.
 #include <memory>
-#include <span>
 
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
@@ -29,9 +28,9 @@ struct VariationalOptions {
   int max_iterations = 20; ///< Newton iterations per node and step
 };
 
-/// Starts at rest from the node poses g0 (base first, options.nodes of them).
+/// Starts at rest from `initial` (options.nodes nodes).
 std::unique_ptr<Stepper> make_variational(const DynamicProblem& problem,
                                           const VariationalOptions& options,
-                                          std::span<const SE3> g0);
+                                          const RestState& initial);
 
 }  // namespace rodlab::solvers::dynamics

@@ -1,0 +1,39 @@
+#pragma once
+// The constitutive law with tendon-like actuators, solved for the strain (docs/statics.md):
+//
+//     Kt (xi - xi_ref) + sum_k F_k c_k(xi) = Lambda,
+//
+// by Newton from xi_ref. Kt is the rod's (effective) stiffness: K in the statics (plus embedded
+// muscle stiffness), K + 2 V / dt in an implicit-midpoint step. Kirchhoff rods solve the moment
+// rows for omega only and keep nu = nu_ref. `add_tendons(xi, r, J)` adds sum_k F_k c_k(xi) to r
+// and its Jacobian to J.
+#include <Eigen/LU>
+
+#include "rodlab/lie/se3.hpp"
+
+namespace rodlab::solvers {
+
+template <class AddTendons>
+lie::Vector6 solve_tendon_law(const lie::Matrix6& Kt, const lie::Vector6& xi_ref,
+                              const lie::Vector6& Lambda, bool kirchhoff, AddTendons add_tendons) {
+  constexpr int kMaxIterations = 30;
+  lie::Vector6 xi = xi_ref, r;
+  lie::Matrix6 J;
+  for (int it = 0; it < kMaxIterations; ++it) {
+    r = Kt * (xi - xi_ref) - Lambda;
+    J = Kt;
+    add_tendons(xi, r, J);
+    lie::Vector6 dxi = lie::Vector6::Zero();
+    if (kirchhoff)
+      dxi.head<3>() = -J.topLeftCorner<3, 3>().partialPivLu().solve(lie::Vector3(r.head<3>()));
+    else
+      dxi = -J.partialPivLu().solve(r);
+    xi += dxi;
+    if (!xi.allFinite()) break;
+    if (dxi.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + (xi - xi_ref).lpNorm<Eigen::Infinity>()))
+      break;
+  }
+  return xi;
+}
+
+}  // namespace rodlab::solvers

@@ -1,0 +1,70 @@
+#pragma once
+// Shared scenes and measurements of the dynamics tests. The rod is the thesis' Table 2.1 rod
+// (L = 0.1 m, D = 1 cm, E = 1 MPa, G = 0.33 MPa, rho = 1000 kg/m^3), clamped at the origin,
+// along +z.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "rodlab/io/scene_loader.hpp"
+#include "rodlab/result/dynamic_result.hpp"
+#include "rodlab/solvers/dynamics/solve_dynamic.hpp"
+
+namespace rodlab::testing::dynamics {
+
+/// The rod with extra YAML lines under `loads:` / `tip:`; viscosity alpha [Pa s].
+inline scene::Scene rod_scene(const std::string& loads, const std::string& tip, double alpha = 0.0,
+                              const std::string& model = "cosserat") {
+  const std::string yaml =
+      "schema: rodlab.scene/1\nname: dynamics-test\nrod:\n  model: " + model +
+      "\n  length: 0.1\n  section: {shape: circle, diameter: 0.01}\n"
+      "  material: {E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: " + std::to_string(alpha) + "}\n"
+      "tip:\n  free: " + tip + "\nloads: " + loads + "\n";
+  return io::load_scene_from_string(yaml, "dynamics-test.yaml");
+}
+
+/// Free vibration: held bent by a tip force P (world x) at t < 1e-9 s, released at rest from the
+/// static equilibrium; no gravity, no damping unless alpha > 0.
+inline scene::Scene released_scene(double P, double alpha = 0.0) {
+  const std::string force = "{steps: [[0, [" + std::to_string(P) + ", 0, 0]], [1.0e-9, [0, 0, 0]]]}";
+  return rod_scene("{}", "{wrench: {force: " + force + ", frame: world}}", alpha);
+}
+
+inline solvers::dynamics::DynamicSolveOptions options(const std::string& scheme, int nodes,
+                                                       double dt, double t_end,
+                                                       scene::Initial initial) {
+  solvers::dynamics::DynamicSolveOptions o;
+  o.scheme = scheme;
+  o.nodes = nodes;
+  o.dt = dt;
+  o.t_end = t_end;
+  o.initial = initial;
+  return o;
+}
+
+/// Mean period of a signal from its upward crossings of its mean (linear interpolation).
+inline double mean_period(const std::vector<double>& t, const std::vector<double>& x) {
+  double mean = 0.0;
+  for (double v : x) mean += v;
+  mean /= static_cast<double>(x.size());
+  std::vector<double> crossings;
+  for (std::size_t i = 1; i < x.size(); ++i)
+    if (x[i - 1] < mean && x[i] >= mean)
+      crossings.push_back(t[i - 1] + (mean - x[i - 1]) / (x[i] - x[i - 1]) * (t[i] - t[i - 1]));
+  if (crossings.size() < 2) return NAN;
+  return (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+}
+
+inline std::vector<double> tip_x(const result::DynamicResult& r) {
+  std::vector<double> x;
+  for (const auto& p : r.tip_position) x.push_back(p.x());
+  return x;
+}
+
+inline double max_of(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+}  // namespace rodlab::testing::dynamics

@@ -1,0 +1,139 @@
+#define BOOST_TEST_MODULE dynamics_variational
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "dynamics_support.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
+#include "rodlab/solvers/statics/solve_static.hpp"
+
+// The explicit variational integrator (thesis Algorithm 1) against closed forms and its own
+// invariants. Rod: thesis Table 2.1 (dynamics_support.hpp), EI = 4.909e-4 N m^2, rho A =
+// 0.07854 kg/m.
+
+namespace {
+
+using namespace rodlab;
+using namespace rodlab::testing::dynamics;
+using solvers::dynamics::solve_dynamic;
+
+constexpr double kEI = 1.0e6 * std::numbers::pi * 1e-8 / 64.0;
+constexpr double kRhoA = 1000.0 * std::numbers::pi * 1e-4 / 4.0;
+constexpr double kL = 0.1;
+
+double auto_dt(const scene::Scene& s, int nodes) {
+  const auto p = solvers::dynamics::DynamicProblem::from_scene(s);
+  return solvers::dynamics::auto_time_step(p, "variational", nodes);
+}
+
+}  // namespace
+
+// Small free vibration (P L^2 / EI = 1e-3) of the cantilever: the period against the
+// Euler-Bernoulli closed form f1 = (1.8751^2 / 2 pi) sqrt(EI / (rho A L^4)) = 4.424 Hz. Shear and
+// rotary inertia (L/D = 10) lower it by about 0.5 % (Timoshenko); the measured frequency must lie
+// 0..1.5 % below the closed form.
+BOOST_AUTO_TEST_CASE(first_bending_frequency) {
+  const double P = 1e-3 * kEI / (kL * kL);
+  const auto s = released_scene(P);
+  const int n = 40;
+  const auto r = solve_dynamic(s, options("variational", n, auto_dt(s, n), 1.2, scene::Initial::static_equilibrium));
+  BOOST_REQUIRE(r.converged);
+  const double f = 1.0 / mean_period(r.t, tip_x(r));
+  const double f_eb = std::pow(1.8751040687119611, 2) / (2 * std::numbers::pi) *
+                      std::sqrt(kEI / (kRhoA * std::pow(kL, 4)));
+  BOOST_TEST_MESSAGE("f = " << f << " Hz, Euler-Bernoulli " << f_eb << " Hz, ratio " << f / f_eb);
+  BOOST_TEST(f / f_eb < 1.0);
+  BOOST_TEST(f / f_eb > 0.985);
+}
+
+// Undamped free vibration: the energy error of a symplectic scheme oscillates at O(dt^2) without
+// secular drift (measured: max 1.8e-4 E0 over 8000 steps, the same in both halves of the run), and
+// rotations stay in SO(3). 20 nodes, large deflection P L^2 / EI = 0.5.
+BOOST_AUTO_TEST_CASE(undamped_energy_and_determinant) {
+  const double P = 0.5 * kEI / (kL * kL);  // a large deflection, P L^2 / EI = 0.5
+  const auto s = released_scene(P);
+  const int n = 20;
+  const auto r = solve_dynamic(s, options("variational", n, auto_dt(s, n), 1.2, scene::Initial::static_equilibrium));
+  BOOST_REQUIRE(r.converged);
+  const double E0 = r.energy.total.front();
+  double first = 0.0, second = 0.0;
+  const std::size_t half = r.t.size() / 2;
+  for (std::size_t i = 0; i < r.t.size(); ++i)
+    (i < half ? first : second) = std::max(i < half ? first : second, std::abs(r.energy.total[i] - E0));
+  BOOST_TEST_MESSAGE("E0 = " << E0 << " J, max |E - E0| = " << first << " J (first half), "
+                             << second << " J (second half) over " << r.steps << " steps");
+  BOOST_TEST(std::max(first, second) <= 5e-4 * E0);
+  BOOST_TEST(second <= 1.5 * first);  // no secular growth
+  BOOST_TEST(max_of(r.max_det_deviation) <= 1e-12);
+}
+
+// Kelvin-Voigt damping (alpha = 300 Pa s): kinetic + strain energy never increases once the tip
+// load is gone, and the energy balance (kinetic + strain + dissipated) holds to 1e-4 of E0
+// (measured 6e-6; the issue asks for 1 %).
+BOOST_AUTO_TEST_CASE(damped_energy_balance) {
+  const double P = 0.5 * kEI / (kL * kL);
+  const auto s = released_scene(P, 300.0);
+  const int n = 20;
+  const auto r = solve_dynamic(s, options("variational", n, auto_dt(s, n), 0.3, scene::Initial::static_equilibrium));
+  BOOST_REQUIRE(r.converged);
+  const double E0 = r.energy.total.front();
+  double rise = 0.0, imbalance = 0.0;
+  for (std::size_t i = 1; i < r.t.size(); ++i) {
+    const double m1 = r.energy.kinetic[i] + r.energy.strain[i];
+    const double m0 = r.energy.kinetic[i - 1] + r.energy.strain[i - 1];
+    if (r.t[i - 1] > 1e-9) rise = std::max(rise, m1 - m0);
+    imbalance = std::max(imbalance, std::abs(r.energy.total[i] - E0));
+  }
+  const double left = r.energy.kinetic.back() + r.energy.strain.back();
+  BOOST_TEST_MESSAGE("E0 = " << E0 << " J, left " << left << " J, max rise " << rise
+                             << " J, max imbalance " << imbalance << " J");
+  BOOST_TEST(left < 0.9 * E0);  // the damping acts (measured 0.78 E0 after 0.3 s)
+  BOOST_TEST(rise <= 1e-12 * E0);
+  BOOST_TEST(imbalance <= 1e-4 * E0);
+}
+
+// Released straight under gravity with strong laminar drag, the rod settles to its static
+// equilibrium; the tip differs from the chebyshev statics (N = 24, exact to 1e-13 m) by the
+// variational grid's discretisation error, which falls at second order in ds (tip half cell).
+// Measured: 2.03e-5, 5.07e-6, 1.27e-6 m at N = 6, 11, 21 (orders 2.004, 2.001).
+BOOST_AUTO_TEST_CASE(settles_to_static_equilibrium_at_second_order) {
+  const auto s = rod_scene(
+      "{gravity: [-9.81, 0, 0], drag: {fluid_density: 1000, laminar: [0, 0, 0, 1.6e-3, 1.6e-3, 1.6e-3]}}",
+      "{}");
+  solvers::statics::StaticSolveOptions so;
+  so.scheme = "chebyshev";
+  so.nodes = 24;
+  const auto eq = solvers::statics::solve_static(s, so);
+  BOOST_REQUIRE(eq.converged);
+  const lie::Vector3 tip = eq.centerline.back().pose.translation();
+  std::vector<double> errors;
+  for (int n : {6, 11, 21}) {
+    const auto r = solve_dynamic(s, options("variational", n, auto_dt(s, n), 2.5, scene::Initial::straight));
+    BOOST_REQUIRE(r.converged);
+    errors.push_back((r.tip_position.back() - tip).norm());
+    BOOST_TEST_MESSAGE("N = " << n << ": |tip - static| = " << errors.back() << " m (deflection "
+                              << tip.x() << " m)");
+  }
+  for (std::size_t i = 1; i < errors.size(); ++i) {
+    const double order = std::log2(errors[i - 1] / errors[i]);
+    BOOST_TEST_MESSAGE("observed order " << order);
+    BOOST_TEST(order > 1.8);
+  }
+}
+
+// The automatic step sits at 0.9 of the linear stability limit (time_step.hpp); the limit is
+// tight: at 1.1 times it the run blows up and is reported as unstable, not as NaN or success.
+BOOST_AUTO_TEST_CASE(stability_limit_is_tight_and_reported) {
+  const auto s = rod_scene("{gravity: [-9.81, 0, 0]}", "{}", 300.0);
+  const int n = 20;
+  const auto p = solvers::dynamics::DynamicProblem::from_scene(s);
+  const double limit = solvers::dynamics::variational_stable_step(p, n);
+  const auto ok = solve_dynamic(s, options("variational", n, 0.9 * limit, 0.05, scene::Initial::straight));
+  BOOST_TEST(ok.converged);
+  const auto bad = solve_dynamic(s, options("variational", n, 1.1 * limit, 0.05, scene::Initial::straight));
+  BOOST_TEST(!bad.converged);
+  BOOST_TEST(bad.reason.find("unstable") != std::string::npos);
+  BOOST_TEST_MESSAGE("limit " << limit << " s; above it: " << bad.reason);
+}
