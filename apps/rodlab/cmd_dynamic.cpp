@@ -43,7 +43,7 @@ const Command& dynamic_command() {
       "is --scheme, else dynamics.scheme, else solver.scheme if it names a dynamics scheme,\n"
       "else variational (`rodlab schemes` lists them). --dt auto (the default when neither\n"
       "--dt nor dynamics.dt is given) is 0.9 times the measured stability limit of\n"
-      "variational, or 1/40 of the first bending period for the implicit schemes. The\n"
+      "variational, or 1/10 of the first bending period for the implicit schemes. The\n"
       "options and the scene are checked before anything runs. The result\n"
       "(rodlab.dynamic-result/1) is printed as a summary and, with --out, written atomically\n"
       "as JSON or as CSV (one row per output time).\n"

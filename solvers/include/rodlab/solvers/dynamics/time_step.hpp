@@ -29,7 +29,7 @@ double variational_stable_step(const DynamicProblem& problem, int nodes);
 inline constexpr double kVariationalSafety = 0.9;
 
 /// `dt: auto` for a scheme: kVariationalSafety times the stable step for `variational`; for the
-/// implicit schemes one fortieth of the first bending period.
+/// implicit schemes a tenth of the first bending period (above implicit-midpoint's lower bound).
 double auto_time_step(const DynamicProblem& problem, std::string_view scheme, int nodes);
 
 }  // namespace rodlab::solvers::dynamics

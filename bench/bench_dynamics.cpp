@@ -1,0 +1,95 @@
+// Dynamics benchmarks: the cost of one time step per node (the hot path of every dynamics
+// scheme) against N, on the viscous cantilever of thesis 3.4 (Table 2.1 rod, alpha = 300 Pa s,
+// gravity along -x), stepping from rest in the straight configuration at the scheme's automatic
+// step. Run: build/bin/bench_dynamics --benchmark_repetitions=5
+// Counter ns_per_node_step = time per step / N; real_time_ratio = wall time per simulated second.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+
+#include "rodlab/io/scene_loader.hpp"
+#include "rodlab/rod/energies.hpp"
+#include "rodlab/solvers/dynamics/implicit_midpoint.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
+#include "rodlab/solvers/dynamics/variational.hpp"
+
+namespace {
+
+using namespace rodlab;
+using namespace rodlab::solvers::dynamics;
+
+const char* kViscousCantilever = R"(schema: rodlab.scene/1
+name: viscous-cantilever
+rod:
+  length: 0.1
+  section: {shape: circle, diameter: 0.01}
+  material: {E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: 300}
+tip:
+  free: {}
+loads:
+  gravity: [-9.81, 0, 0]
+)";
+
+RestState straight(const DynamicProblem& p, int n) {
+  RestState s{std::vector<SE3>(n), std::vector<Vector6>(n, p.model().xi_star())};
+  for (int j = 0; j < n; ++j)
+    s.g[j] = rod::reference_pose(p.model(), p.base(), p.length() * j / (n - 1));
+  return s;
+}
+
+void step_benchmark(benchmark::State& state, std::string scheme) {
+  const auto scene = io::load_scene_from_string(kViscousCantilever, "bench.yaml");
+  const auto problem = DynamicProblem::from_scene(scene);
+  const int n = static_cast<int>(state.range(0));
+  const double dt = auto_time_step(problem, scheme, n);
+  const RestState initial = straight(problem, n);
+  auto fresh = [&] {
+    return scheme == "variational" ? make_variational(problem, {n, 1e-12, 20}, initial)
+                                   : make_implicit_midpoint(problem, {n, 1e-10, 50}, initial);
+  };
+  // Time steps 10..kWindow of runs from rest, restarted outside the timing: the same window of
+  // motion for every N and scheme.
+  constexpr int kWindow = 200;
+  std::unique_ptr<Stepper> stepper;
+  double t = 0.0;
+  int in_window = kWindow;
+  long iterations = 0, steps = 0;
+  for (auto _ : state) {
+    if (in_window == kWindow) {
+      state.PauseTiming();
+      stepper = fresh();
+      t = 0.0;
+      for (int i = 0; i < 10; ++i, t += dt) stepper->step(t, dt);
+      in_window = 10;
+      state.ResumeTiming();
+    }
+    const StepStatus s = stepper->step(t, dt);
+    t += dt;
+    ++in_window;
+    iterations += s.iterations;
+    ++steps;
+    if (!s.ok) state.SkipWithError(s.reason.c_str());
+  }
+  state.counters["ns_per_node_step"] = benchmark::Counter(
+      static_cast<double>(n) * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["real_time_ratio"] = benchmark::Counter(
+      dt, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["dt"] = dt;
+  if (scheme != "variational")
+    state.counters["integrations_per_step"] = static_cast<double>(iterations) / std::max(1L, steps);
+}
+
+const bool registered = [] {
+  for (const char* scheme : {"variational", "implicit-midpoint"}) {
+    auto* b = benchmark::RegisterBenchmark((std::string("step/") + scheme).c_str(), step_benchmark,
+                                           std::string(scheme));
+    for (int n : {10, 20, 50, 100}) b->Arg(n);
+    b->Unit(benchmark::kMicrosecond);
+  }
+  return true;
+}();
+
+}  // namespace
+
+BENCHMARK_MAIN();
