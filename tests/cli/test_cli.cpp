@@ -318,6 +318,28 @@ BOOST_AUTO_TEST_CASE(dt_auto_is_accepted) {
   BOOST_TEST(box.files().empty());
 }
 
+// rodlab dynamic: a short run writes the result (spec section 4) and exits 0; a run above the
+// explicit scheme's stability limit exits 1 and still writes the result, with the reason; a scene
+// feature a scheme does not support is bad input (2, nothing written).
+BOOST_AUTO_TEST_CASE(dynamic_writes_results_and_reports_instability) {
+  Sandbox box;
+  const std::string scene = quote(kScene);
+  const Run ok = box.run("dynamic " + scene + " --t-end 2e-3 --nodes 6 --out r.json");
+  BOOST_TEST(ok.status == 0, ok.err);
+  BOOST_TEST(contains(ok.out, "real-time ratio"));
+  const std::string json = read(box.work / "r.json");
+  BOOST_TEST(contains(json, "\"schema\": \"rodlab.dynamic-result/1\""));
+  BOOST_TEST(contains(json, "\"converged\": true"));
+  BOOST_TEST(contains(json, "\"work_in\""));
+  const Run blown = box.run("dynamic " + scene + " --t-end 0.05 --nodes 20 --dt 1e-3 --out b.json");
+  BOOST_TEST(blown.status == 1, blown.err);
+  const std::string bad = read(box.work / "b.json");
+  BOOST_TEST(contains(bad, "\"converged\": false"));
+  BOOST_TEST(contains(bad, "unstable"));
+  expect_bad_input(box, "dynamic " + scene + " --t-end 1e-3 --set rod.model=kirchhoff --out k.json",
+                   {"kirchhoff", "not supported yet"});
+}
+
 BOOST_AUTO_TEST_CASE(unknown_scheme_lists_the_valid_ones_for_the_command) {
   Sandbox box;
   const std::string scene = quote(kScene);
