@@ -1,18 +1,20 @@
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 
+#include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <variant>
 
+#include "rodlab/loads/point_wrench.hpp"
 #include "rodlab/solvers/common/tendon_law.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {
 
+/// Body components of a scene wrench on a section with rotation R (world: a dead load).
 Vector6 frame_wrench(const Vector3& moment, const Vector3& force, scene::Frame frame, const SO3& R) {
-  if (frame == scene::Frame::body) return lie::se3::join(moment, force);
-  const SO3 Rt = R.inverse();
-  return lie::se3::join(Rt * moment, Rt * force);
+  const auto kind = frame == scene::Frame::body ? loads::WrenchFrame::body : loads::WrenchFrame::world;
+  return loads::PointWrench{lie::se3::join(moment, force), kind}.body_wrench(R);
 }
 
 loads::TendonPath tendon_path(const scene::Offset& offset, const std::optional<scene::Span>& span,
@@ -108,11 +110,15 @@ Vector6 DynamicProblem::solve_strain_with_actuators(const Vector6& Kt, const Vec
                           });
 }
 
-std::vector<double> DynamicProblem::entry_points() const {
-  std::vector<double> points;
-  for (const auto& a : actuators_)
-    if (a.enters_from_outside) points.push_back(a.path.s0());
-  return points;
+std::vector<DynamicProblem::EntryNode> DynamicProblem::entry_nodes(int nodes) const {
+  std::vector<EntryNode> entries;
+  const double ds = length() / (nodes - 1);
+  for (const auto& a : actuators_) {
+    if (!a.enters_from_outside) continue;
+    const int j = static_cast<int>(std::lround(a.path.s0() / ds));
+    if (j > 0 && j < nodes) entries.push_back({a.path.s0(), j});
+  }
+  return entries;
 }
 
 Vector6 DynamicProblem::entry_load(double s_entry, const Vector6& xi, double t) const {

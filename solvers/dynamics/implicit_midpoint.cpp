@@ -32,6 +32,7 @@ class ImplicitMidpoint final : public Stepper {
     g_ = initial.g;
     eta_.assign(n_, Vector6::Zero());
     xi_h_.assign(n_, Vector6::Zero());
+    xi_ref_.assign(n_, Vector6::Zero());
     eta_h_.assign(n_, Vector6::Zero());
     g_h_.assign(n_, SE3::identity());
     const auto& K = problem.model().K_diag();
@@ -40,16 +41,17 @@ class ImplicitMidpoint final : public Stepper {
     // first guess: the base wrench of the initial state
     x_prev_ = P_.model().K_diag().cwiseProduct(xi_[0] - P_.model().xi_star()).cwiseQuotient(scale_);
     x_prev2_ = x_prev_;
-    for (double s : problem.entry_points()) {
-      const int j = static_cast<int>(std::lround(s / ds_));
-      if (j > 0 && j < n_) entries_.push_back({s, j});
-    }
+    entries_ = problem.entry_nodes(n_);
   }
 
   StepStatus step(double t, double dt) override {
     t_h_ = t + 0.5 * dt;
     dt_ = dt;
     Kt_ = P_.model().K_diag() + (2.0 / dt) * P_.model().V_diag();
+    // Lambda_h = K (xi_h - xi*) + (2/dt) V (xi_h - xi_i) + tendons = Kt (xi_h - xi_ref) + tendons
+    const Vector6 K_xi_star = P_.model().K_diag().cwiseProduct(P_.model().xi_star());
+    for (int j = 0; j < n_; ++j)
+      xi_ref_[j] = (K_xi_star + (2.0 / dt) * P_.model().V_diag().cwiseProduct(xi_[j])).cwiseQuotient(Kt_);
     Vector6 x = steps_ >= 2 ? Vector6(2.0 * x_prev_ - x_prev2_) : x_prev_;
     int shots = 0;
     Vector6 r = shoot(x);
@@ -104,11 +106,7 @@ class ImplicitMidpoint final : public Stepper {
 
   Vector3 tip_position() const override { return g_.back().translation(); }
 
-  double max_det_deviation() const override {
-    double worst = 0.0;
-    for (const SE3& g : g_) worst = std::max(worst, std::abs(g.rotation_matrix().determinant() - 1.0));
-    return worst;
-  }
+  double max_det_deviation() const override { return dynamics::max_det_deviation(g_); }
 
   std::vector<result::CenterlineSample> centerline() const override {
     std::vector<result::CenterlineSample> out(n_);
@@ -117,11 +115,6 @@ class ImplicitMidpoint final : public Stepper {
   }
 
  private:
-  struct Entry {
-    double s;
-    int node;
-  };
-
   StepStatus failure(const std::string& what, double t) const {
     return StepStatus::failed("implicit-midpoint: " + what + " in the step from t = " +
                               std::to_string(t) + " s (dt = " + std::to_string(dt_) + " s)");
@@ -130,19 +123,14 @@ class ImplicitMidpoint final : public Stepper {
   /// Integrates the half-step BVP from the base with Lambda_h(0) = x * scale (explicit Euler
   /// RKMK, (3.51)-(3.52)) and returns the scaled tip residual.
   Vector6 shoot(const Vector6& x) {
-    const auto& model = P_.model();
-    const Vector6& M = model.M_diag();
-    const Vector6& V = model.V_diag();
+    const Vector6& M = P_.model().M_diag();
     const double c = 2.0 / dt_;
     Vector6 Lambda = x.cwiseProduct(scale_);
     Vector6 eta = Vector6::Zero();
     SE3 g = P_.base();
     for (int j = 0;; ++j) {
       const double s = j * ds_;
-      // Lambda_h = K (xi_h - xi*) + (2/dt) V (xi_h - xi_i) + tendons: reference of the diagonal part
-      const Vector6 xi_ref =
-          (model.K_diag().cwiseProduct(model.xi_star()) + c * V.cwiseProduct(xi_[j])).cwiseQuotient(Kt_);
-      const Vector6 xi = P_.solve_strain(Kt_, xi_ref, Lambda, s, t_h_);
+      const Vector6 xi = P_.solve_strain(Kt_, xi_ref_[j], Lambda, s, t_h_);
       xi_h_[j] = xi;
       eta_h_[j] = eta;
       g_h_[j] = g;
@@ -207,9 +195,9 @@ class ImplicitMidpoint final : public Stepper {
   double ds_;
   Vector6 scale_, Kt_;
   double t_h_ = 0.0, dt_ = 0.0, J_dt_ = 0.0;
-  std::vector<Vector6> xi_, eta_, xi_h_, eta_h_;
+  std::vector<Vector6> xi_, eta_, xi_h_, eta_h_, xi_ref_;
   std::vector<SE3> g_, g_h_;
-  std::vector<Entry> entries_;
+  std::vector<DynamicProblem::EntryNode> entries_;
   Matrix6 J_ = Matrix6::Identity();
   bool J_valid_ = false;
   Vector6 x_prev_, x_prev2_;

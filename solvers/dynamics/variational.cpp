@@ -48,10 +48,7 @@ class Variational final : public Stepper {
     mu_.assign(n_, Vector6::Zero());
     E_.assign(n_, SE3::identity());
     M_ = problem.model().M_diag();
-    for (double s : problem.entry_points()) {
-      const int j = static_cast<int>(std::lround(s / ds_));
-      if (j > 0 && j < n_) entries_.push_back({s, j});
-    }
+    entries_ = problem.entry_nodes(n_);
   }
 
   StepStatus step(double t, double dt) override {
@@ -116,11 +113,7 @@ class Variational final : public Stepper {
 
   Vector3 tip_position() const override { return g_.back().translation(); }
 
-  double max_det_deviation() const override {
-    double worst = 0.0;
-    for (const SE3& g : g_) worst = std::max(worst, std::abs(g.rotation_matrix().determinant() - 1.0));
-    return worst;
-  }
+  double max_det_deviation() const override { return dynamics::max_det_deviation(g_); }
 
   std::vector<result::CenterlineSample> centerline() const override {
     std::vector<result::CenterlineSample> out(n_);
@@ -135,11 +128,6 @@ class Variational final : public Stepper {
   }
 
  private:
-  struct Entry {
-    double s;
-    int node;
-  };
-
   /// (3.42): dexp^-T_{dt eta} M eta = mu for eta, chord Newton from the previous velocity with
   /// the Jacobian M - dt/2 (ad_eta^T M + bar(M eta)) of the first-order expansion
   /// dexp^-T_x = I - ad_x^T / 2 + O(x^2); the residual is exact.
@@ -172,7 +160,7 @@ class Variational final : public Stepper {
   Vector6 M_;
   std::vector<SE3> g_, G_, E_;
   std::vector<Vector6> xi_, lambda_, eta_, mu_;
-  std::vector<Entry> entries_;
+  std::vector<DynamicProblem::EntryNode> entries_;
   Energy ledger_;
   double kinetic_old_ = 0.0;
 };

@@ -97,7 +97,11 @@ class DynamicProblem {
   /// Point wrench on the rod where cables enter from outside at s0 > 0: the rod's internal
   /// wrench is continuous there, so the node that carries the jump of the total internal wrench
   /// gets it back as an external load, -F c(xi) (compare StaticProblem::entry_jump).
-  std::vector<double> entry_points() const;
+  struct EntryNode {
+    double s;  ///< where the cable enters
+    int node;  ///< the node nearest to it on a grid of N nodes (inside (0, N - 1])
+  };
+  std::vector<EntryNode> entry_nodes(int nodes) const;
   Vector6 entry_load(double s_entry, const Vector6& xi, double t) const;
 
  private:

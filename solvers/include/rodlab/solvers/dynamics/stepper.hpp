@@ -2,6 +2,9 @@
 // What the time loop (solve_dynamic.hpp) needs from a dynamics scheme. A stepper owns its state
 // (allocated once), advances it by one step without allocating, and reports the quantities of
 // the result file through the shared formulas of energy.hpp.
+#include <algorithm>
+#include <cmath>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -9,6 +12,13 @@
 #include "rodlab/solvers/dynamics/energy.hpp"
 
 namespace rodlab::solvers::dynamics {
+
+/// max |det R - 1| over node poses: the structure diagnostic every stepper reports.
+inline double max_det_deviation(std::span<const SE3> g) {
+  double worst = 0.0;
+  for (const SE3& x : g) worst = std::max(worst, std::abs(x.rotation_matrix().determinant() - 1.0));
+  return worst;
+}
 
 /// A state at rest: node poses and node strains, base first.
 struct RestState {
