@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/LU>
+
 namespace rodlab::solvers {
 namespace {
 
@@ -67,6 +69,15 @@ Eigen::MatrixXd chebyshev_differentiation_matrix(int n) {
   for (int i = upper; i < n; ++i)
     for (int j = 0; j < n; ++j) D(i, j) = -D(m - i, m - j);
   return D;
+}
+
+Eigen::MatrixXd chebyshev_integration_matrix(int n) {
+  Eigen::MatrixXd D = chebyshev_differentiation_matrix(n);
+  D.row(0).setZero();
+  D(0, 0) = 1.0;
+  Eigen::MatrixXd S = D.partialPivLu().inverse();
+  S.row(0) = D.row(0);  // u(-1) = u_0 exactly (the inverse's first row is e_0 up to rounding)
+  return S;
 }
 
 Eigen::VectorXd clenshaw_curtis_weights(int n) {

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/LU>
 #include <Eigen/QR>
 
 #include "rodlab/solvers/common/chebyshev_operators.hpp"
+#include "rodlab/solvers/statics/chebyshev_newton_matrix.hpp"
 #include "rodlab/solvers/statics/continuation.hpp"
 #include "rodlab/solvers/statics/result_builder.hpp"
 #include "rodlab/solvers/statics/shooting.hpp"
@@ -50,13 +50,44 @@ constexpr double kResolvedDefect = 0.25;
 constexpr int kMaxHalvings = 20;
 /// Central-difference step for the node blocks of the Jacobian (scaled unknowns).
 constexpr double kFdStep = 1e-5;
+/// The direct solve starts from the reference guess bent by its own wrench (complete_kinematics)
+/// when no chart then turns by more than this: there the undeformed rod's wrench is a good guess
+/// of the deformed rod's; beyond, it over-bends the rod.
+constexpr double kCompletionRotation = kSplitRotation / 2.0;
+/// Fixed-point sweeps of that bending (contraction ~ rotation / 2).
+constexpr int kCompletionSweeps = 2;
+
+/// Chebyshev-Lobatto operators on [-1, 1] for one node count (chebyshev_operators.hpp).
+struct Operators {
+  VectorXd t;          ///< points
+  MatrixXd D;          ///< differentiation
+  MatrixXd absD;       ///< its entries' magnitudes
+  MatrixXd integrate;  ///< chebyshev_integration_matrix
+  MatrixXd midpoints;  ///< interpolation to the midpoints in angle, -cos((j + 1/2) pi / (n - 1))
+};
+
+/// The operators for n nodes. They depend on n only: each thread builds them once per n.
+const Operators& operators(int n) {
+  thread_local std::map<int, Operators> cache;
+  auto it = cache.find(n);
+  if (it == cache.end()) {
+    MatrixXd D = chebyshev_differentiation_matrix(n);
+    MatrixXd absD = D.cwiseAbs();
+    const int m = n - 1;
+    VectorXd mid(m);
+    for (int j = 0; j < m; ++j) mid[j] = -std::cos((j + 0.5) * pi / m);
+    it = cache.emplace(n, Operators{chebyshev_lobatto_points(n), std::move(D), std::move(absD),
+                                    chebyshev_integration_matrix(n), chebyshev_interpolation_matrix(n, mid)})
+             .first;
+  }
+  return it->second;
+}
 
 struct Element {
   int n;                  ///< nodes
   int offset;             ///< index of its first node in the unknowns (interface nodes duplicated)
   double half;            ///< half its length: d/ds = D / half
-  const MatrixXd* D;      ///< Chebyshev-Lobatto differentiation on [-1, 1]
-  const MatrixXd* absD;   ///< its entries' magnitudes
+  const Operators* op;
   std::vector<double> s;  ///< arclengths of its nodes
 };
 
@@ -77,23 +108,22 @@ class Collocation {
     int offset = 0;
     for (int e = 0; e < elements; ++e) {
       const int n = base + (e < extra ? 1 : 0) + 1;
-      auto it = operators_.find(n);
-      if (it == operators_.end()) {
-        MatrixXd D = chebyshev_differentiation_matrix(n);
-        MatrixXd absD = D.cwiseAbs();
-        it = operators_.emplace(n, std::pair{std::move(D), std::move(absD)}).first;
-      }
+      const Operators& op = operators(n);
       const double a = L * e / elements, b = e + 1 == elements ? L : L * (e + 1) / elements;
-      const VectorXd t = chebyshev_lobatto_points(n);
       std::vector<double> s(n);
-      for (int i = 0; i < n; ++i) s[i] = i == 0 ? a : i == n - 1 ? b : 0.5 * (a + b) + 0.5 * (b - a) * t[i];
-      elements_.push_back({n, offset, 0.5 * (b - a), &it->second.first, &it->second.second, std::move(s)});
+      for (int i = 0; i < n; ++i)
+        s[i] = i == 0 ? a : i == n - 1 ? b : 0.5 * (a + b) + 0.5 * (b - a) * op.t[i];
+      elements_.push_back({n, offset, 0.5 * (b - a), &op, std::move(s)});
       offset += n;
     }
     nodes_ = nodes;
     total_nodes_ = offset;
     theta_scale_ << 1.0, 1.0, 1.0, L, L, L;
     charts_.resize(elements);
+    std::vector<ChebyshevNewtonMatrix::Element> shape;
+    for (const auto& el : elements_) shape.push_back({el.n, el.offset, &el.op->D});
+    newton_matrix_.emplace(std::move(shape));
+    linear_scratch_.resize(elements_.front().n, 12);  // the first element is the largest
   }
 
   int size() const { return 12 * total_nodes_; }
@@ -114,6 +144,33 @@ class Collocation {
         node_lambda(xn) = Lambda[el.offset + i].cwiseQuotient(P_.wrench_scale());
       }
     return x;
+  }
+
+  /// Makes theta of a guess consistent with its Lambda: the theta rows (2.104) solved for theta
+  /// with Lambda fixed, theta = S (L_e/2) dexp^-1_{-theta} xi(Lambda) per element (S:
+  /// chebyshev_integration_matrix, theta_0 = 0), by kCompletionSweeps fixed-point sweeps. From the
+  /// reference guess this bends the rod by the undeformed rod's equilibrium wrench, the
+  /// linear-elastic deflection, and the first Newton matrix is evaluated near the solution (5
+  /// iterations instead of 8 on the gravity cantilever). False, x unchanged, when a chart would
+  /// turn by more than kCompletionRotation.
+  bool complete_kinematics(VectorXd& x) const {
+    using Block = Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor>;
+    VectorXd bent = x;
+    Eigen::Matrix<double, Eigen::Dynamic, 6> rate;
+    for (const auto& el : elements_) {
+      Eigen::Map<Block> X(bent.data() + 12 * el.offset, el.n, 12);
+      rate.setZero(el.n, 6);  // row 0: theta_0 = 0
+      for (int sweep = 0; sweep < kCompletionSweeps; ++sweep) {
+        for (int i = 1; i < el.n; ++i) {
+          const double* xn = bent.data() + 12 * (el.offset + i);
+          rate.row(i) = theta_rate(el, theta(xn), P_.strain(lambda(xn))).transpose();
+        }
+        X.leftCols<6>() = el.op->integrate * rate;
+      }
+    }
+    if (!(max_chart_rotation(bent) <= kCompletionRotation)) return false;
+    x.swap(bent);
+    return true;
   }
 
   /// Clamped tip: the constant twist xi_c = log(g_0^-1 g_target) / L that joins base and target
@@ -145,42 +202,18 @@ class Collocation {
     return F.allFinite();
   }
 
-  /// The Newton matrix at x.
-  void jacobian(const VectorXd& x, MatrixXd& J) {
+  /// The parts of the Newton matrix at x (chebyshev_newton_matrix.hpp): each node's block of
+  /// its rows' derivatives with respect to its own unknowns (the D part is linear and known),
+  /// and the chart blocks.
+  void jacobian(const VectorXd& x) {
     update_charts(x);
-    J.setZero(size(), size());
+    ChebyshevNewtonMatrix& M = *newton_matrix_;
     VectorXd xp = x;
-    Eigen::Matrix<double, 12, 1> Fp, Fm;
     for (int e = 0; e < elements(); ++e) {
       const Element& el = elements_[e];
-      const MatrixXd& D = *el.D;
-      // Linear part: D on theta (rows 1..n-1) and Lambda (rows 0..n-2), continuity.
       for (int i = 0; i < el.n; ++i) {
-        const int row = 12 * (el.offset + i);
-        for (int k = 0; k < el.n; ++k) {
-          const int col = 12 * (el.offset + k);
-          if (i > 0)
-            for (int c = 0; c < 6; ++c) J(row + c, col + c) = D(i, k);
-          if (i < el.n - 1)
-            for (int c = 6; c < 12; ++c) J(row + c, col + c) = D(i, k);
-        }
-      }
-      if (e + 1 < elements()) {
-        const int row = 12 * (el.offset + el.n - 1), col = 12 * elements_[e + 1].offset;
-        for (int c = 6; c < 12; ++c) J(row + c, col + c) = -1.0;
-      }
-      // Node blocks by central differences.
-      for (int i = 0; i < el.n; ++i) {
-        const int base = 12 * (el.offset + i);
-        for (int c = 0; c < 12; ++c) {
-          const double h = kFdStep * std::max(1.0, std::abs(x[base + c]));
-          xp[base + c] = x[base + c] + h;
-          local_rows(e, i, xp.data(), Fp.data());
-          xp[base + c] = x[base + c] - h;
-          local_rows(e, i, xp.data(), Fm.data());
-          xp[base + c] = x[base + c];
-          J.block<12, 1>(base, base + c) += (Fp - Fm) / (2.0 * h);
-        }
+        if (i + 1 == el.n && e + 1 == elements()) differenced_block(e, i, x, xp, M.node_block(el.offset + i));
+        else node_block(e, i, x.data() + 12 * (el.offset + i), M.node_block(el.offset + i));
       }
     }
     // Chart chain: the last theta of element e moves the charts of all later elements.
@@ -194,8 +227,7 @@ class Collocation {
         xp[col + c] = x[col + c] - h;
         const auto minus = downstream_rows(e, xp);
         xp[col + c] = x[col + c];
-        const int first_row = 12 * elements_[e + 1].offset;
-        J.block(first_row, col + c, plus.size(), 1) += (plus - minus) / (2.0 * h);
+        M.chart_block(e).col(c) = (plus - minus) / (2.0 * h);
       }
     }
     update_charts(x);
@@ -210,13 +242,14 @@ class Collocation {
       out.residual_norm = std::numeric_limits<double>::infinity();
       return out;
     }
-    // The LU works in place in J_ (no second n^2 buffer: at N = 24 the page faults of fresh
-    // buffers cost a third of the factorisation).
-    std::optional<Eigen::PartialPivLU<Eigen::Ref<MatrixXd>>> lu;
+    ChebyshevNewtonMatrix& M = *newton_matrix_;
     Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod;
     bool use_cod = false;  // the Newton matrix is singular: minimum-norm least-squares steps
-    auto solve = [&](const VectorXd& rhs) -> VectorXd {
-      return use_cod ? VectorXd(cod.solve(rhs)) : VectorXd(lu->solve(rhs));
+    // out = -J^-1 rhs.
+    auto newton_step = [&](const VectorXd& rhs, VectorXd& out) {
+      if (use_cod) out = cod.solve(rhs);
+      else M.solve(rhs, out);
+      out = -out;
     };
     bool have_lu = false, fresh = false, have_next = false, stalled = false;
     // Converged: |F| <= tol, or |F| at its rounding level and no longer decreasing.
@@ -229,22 +262,25 @@ class Collocation {
       }
       if (out.iterations == max_iterations) break;
       if (!have_lu) {
-        jacobian(x, J_);
-        if (lu) lu->compute(J_);
-        else lu.emplace(J_);
+        jacobian(x);
         ++factorizations;
         // A singular matrix (e.g. the axial mode of a straight Kirchhoff rod with both ends
-        // clamped, where the axial force is undetermined to first order) gets least-squares steps.
-        const auto pivots = lu->matrixLU().diagonal().cwiseAbs();
-        use_cod = !(pivots.minCoeff() > kSingularPivot * pivots.maxCoeff()) || !lu->solve(F).allFinite();
+        // clamped, where the axial force is undetermined to first order) gets least-squares steps
+        // with the full matrix.
+        use_cod = !M.factorize(kSingularPivot);
+        if (!use_cod) {
+          newton_step(F, next);
+          use_cod = !next.allFinite();
+        }
         if (use_cod) {
-          jacobian(x, J_);  // the LU overwrote it
+          M.assemble(J_);
           cod.compute(J_);
         }
         have_lu = fresh = true;
-        have_next = false;
+        have_next = !use_cod;
       }
-      dx = have_next ? next : VectorXd(-solve(F));
+      if (have_next) dx.swap(next);
+      else newton_step(F, dx);
       if (!dx.allFinite()) {
         out.reason = "singular Newton matrix";
         return out;
@@ -258,7 +294,7 @@ class Collocation {
       for (int k = 0; k < kMaxHalvings; ++k, alpha *= 0.5) {
         x_new = x + alpha * dx;
         if (!residual(x_new, F_new)) continue;
-        next = -solve(F_new);
+        newton_step(F_new, next);
         if (next.norm() <= (1.0 - 0.25 * alpha) * step) {
           accepted = true;
           break;
@@ -295,7 +331,7 @@ class Collocation {
     double level = 0.0;
     for (const auto& el : elements_) {
       const Eigen::Map<const Block> X(x.data() + 12 * el.offset, el.n, 12);
-      level = std::max(level, (*el.absD * X.cwiseAbs()).maxCoeff());
+      level = std::max(level, (el.op->absD * X.cwiseAbs()).maxCoeff());
     }
     return std::numeric_limits<double>::epsilon() * level;
   }
@@ -334,20 +370,16 @@ class Collocation {
     for (int e = 0; e < elements(); ++e) {
       const Element& el = elements_[e];
       const int m = el.n - 1;
-      Eigen::VectorXd t(m);
-      for (int j = 0; j < m; ++j) t[j] = -std::cos((j + 0.5) * pi / m);
-      const MatrixXd C = chebyshev_interpolation_matrix(el.n, t);
+      const MatrixXd& C = el.op->midpoints;
       const Eigen::Map<const Block> X(x.data() + 12 * el.offset, el.n, 12);
-      const Block values = C * X, slopes = C * ((*el.D) * X);
+      const Block values = C * X, slopes = C * (el.op->D * X);
       for (int j = 0; j < m; ++j) {
         const Vector6 th = Vector6(values.row(j).head<6>().transpose()).cwiseProduct(theta_scale_);
         const Vector6 La = Vector6(values.row(j).tail<6>().transpose()).cwiseProduct(P_.wrench_scale());
         const Vector6 xi = P_.strain(La);
         const SO3 R = charts_[e].rotation() * SO3::exp(th.head<3>());
-        const Vector6 r_theta = Vector6(slopes.row(j).head<6>().transpose()) -
-                                (el.half * lie::se3::dexp_inv_apply(-th, xi)).cwiseQuotient(theta_scale_);
-        const Vector6 r_lambda = Vector6(slopes.row(j).tail<6>().transpose()) -
-                                 (el.half * P_.wrench_derivative(R, xi, La)).cwiseQuotient(P_.wrench_scale());
+        const Vector6 r_theta = Vector6(slopes.row(j).head<6>().transpose()) - theta_rate(el, th, xi);
+        const Vector6 r_lambda = Vector6(slopes.row(j).tail<6>().transpose()) - lambda_rate(el, R, xi, La);
         worst = std::max({worst, r_theta.lpNorm<Eigen::Infinity>(), r_lambda.lpNorm<Eigen::Infinity>()});
       }
     }
@@ -420,6 +452,76 @@ class Collocation {
     return ok;
   }
 
+  /// (2.104)'s right-hand side at a node, scaled like the theta rows: (L_e/2) dexp^-1_{-theta} xi.
+  Vector6 theta_rate(const Element& el, const Vector6& th, const Vector6& xi) const {
+    return (el.half * lie::se3::dexp_inv_apply(-th, xi)).cwiseQuotient(theta_scale_);
+  }
+  /// (2.103)'s right-hand side at a node, scaled like the Lambda rows: (L_e/2) (ad_xi^T Lambda - W_bar(R)).
+  Vector6 lambda_rate(const Element& el, const SO3& R, const Vector6& xi, const Vector6& La) const {
+    return (el.half * P_.wrench_derivative(R, xi, La)).cwiseQuotient(P_.wrench_scale());
+  }
+
+  /// The node block of node i of element e (not the tip) at its unknowns xn. The Lambda columns
+  /// are exact: (2.104) is linear in xi = xi* + K^-1 Lambda, with d/dxi = dexp^-1_{-theta};
+  /// (2.103)'s ad_xi^T Lambda is bilinear in (xi, Lambda). The theta columns (dexp^-1 in theta,
+  /// the loads through R) by central differences.
+  void node_block(int e, int i, const double* xn, ChebyshevNewtonMatrix::Matrix12& G) const {
+    const Element& el = elements_[e];
+    const Vector6 th = theta(xn), La = lambda(xn), xi = P_.strain(La);
+    const Vector6& ws = P_.wrench_scale();
+    const Vector6 slope = P_.strain_slope();
+    auto step = [&](int c) { return kFdStep * std::max(1.0, std::abs(xn[c])); };
+    G.setZero();
+    if (i == 0) {
+      G.topLeftCorner<6, 6>().setIdentity();  // theta_0 = 0
+    } else {  // (2.104)
+      G.block<6, 6>(0, 6) = (-el.half * theta_scale_.cwiseInverse()).asDiagonal() * lie::se3::dexp_inv(-th) *
+                            slope.cwiseProduct(ws).asDiagonal();
+      for (int c = 0; c < 6; ++c) {
+        const double h = step(c);
+        Vector6 plus = th, minus = th;
+        plus[c] += h * theta_scale_[c];
+        minus[c] -= h * theta_scale_[c];
+        G.block<6, 1>(0, c) = (theta_rate(el, minus, xi) - theta_rate(el, plus, xi)) / (2.0 * h);
+      }
+    }
+    if (i + 1 < el.n) {  // (2.103): -(L/2) (ad_xi^T Lambda - W_bar(R))
+      for (int c = 0; c < 6; ++c) {
+        const Vector6 unit = Vector6::Unit(c), dxi = slope[c] * Vector6::Unit(c);
+        const Vector6 d = lie::se3::coad_apply(xi, unit) + lie::se3::coad_apply(dxi, La);
+        G.block<6, 1>(6, 6 + c) = (-el.half * ws[c] * d).cwiseQuotient(ws);
+      }
+      const SO3 chart = charts_[e].rotation();
+      for (int c = 0; c < 3; ++c) {
+        const double h = step(c);
+        Vector3 plus = th.head<3>(), minus = th.head<3>();
+        plus[c] += h;
+        minus[c] -= h;
+        const Vector6 diff =
+            P_.distributed_load(chart * SO3::exp(plus)) - P_.distributed_load(chart * SO3::exp(minus));
+        G.block<6, 1>(6, c) = (el.half / (2.0 * h) * diff).cwiseQuotient(ws);
+      }
+    } else {  // continuity
+      G.bottomRightCorner<6, 6>().setIdentity();
+    }
+  }
+
+  /// The node block by central differences of local_rows (xp: a copy of x, restored on return).
+  void differenced_block(int e, int i, const VectorXd& x, VectorXd& xp,
+                         ChebyshevNewtonMatrix::Matrix12& G) const {
+    const int base = 12 * (elements_[e].offset + i);
+    Eigen::Matrix<double, 12, 1> Fp, Fm;
+    for (int c = 0; c < 12; ++c) {
+      const double h = kFdStep * std::max(1.0, std::abs(x[base + c]));
+      xp[base + c] = x[base + c] + h;
+      local_rows(e, i, xp.data(), Fp.data());
+      xp[base + c] = x[base + c] - h;
+      local_rows(e, i, xp.data(), Fm.data());
+      xp[base + c] = x[base + c];
+      G.col(c) = (Fp - Fm) / (2.0 * h);
+    }
+  }
+
   /// The rows of node i of element e that depend on the node's own unknowns (and the chart).
   void local_rows(int e, int i, const double* x, double* out) const {
     const Element& el = elements_[e];
@@ -430,11 +532,11 @@ class Collocation {
     if (i == 0) {
       theta_row = Eigen::Map<const Vector6>(xn);  // theta_0 = 0
     } else {  // (2.104)
-      theta_row = (-el.half * lie::se3::dexp_inv_apply(-th, xi)).cwiseQuotient(theta_scale_);
+      theta_row = -theta_rate(el, th, xi);
     }
     if (i < el.n - 1) {  // (2.103)
       const SO3 R = charts_[e].rotation() * SO3::exp(th.head<3>());
-      lambda_row = (-el.half * P_.wrench_derivative(R, xi, La)).cwiseQuotient(P_.wrench_scale());
+      lambda_row = -lambda_rate(el, R, xi, La);
     } else if (e + 1 < elements()) {  // continuity; the next element's part is linear
       lambda_row = Eigen::Map<const Vector6>(xn + 6);
     } else {
@@ -443,12 +545,13 @@ class Collocation {
   }
 
   /// D theta, D Lambda and the continuity coupling of element e, added to F.
-  void add_linear(int e, const VectorXd& x, VectorXd& F) const {
+  void add_linear(int e, const VectorXd& x, VectorXd& F) {
     const Element& el = elements_[e];
     using Block = Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor>;
     const Eigen::Map<const Block> X(x.data() + 12 * el.offset, el.n, 12);
     Eigen::Map<Block> Y(F.data() + 12 * el.offset, el.n, 12);
-    const Block DX = (*el.D) * X;
+    auto DX = linear_scratch_.topRows(el.n);
+    DX.noalias() = el.op->D * X;
     Y.bottomLeftCorner(el.n - 1, 6) += DX.bottomLeftCorner(el.n - 1, 6);
     Y.topRightCorner(el.n - 1, 6) += DX.topRightCorner(el.n - 1, 6);
     if (e + 1 < elements())
@@ -468,8 +571,9 @@ class Collocation {
   }
 
   StaticProblem P_;
-  MatrixXd J_;  ///< the Newton matrix, factorised in place
-  std::map<int, std::pair<MatrixXd, MatrixXd>> operators_;  ///< by node count: D, |D|
+  std::optional<ChebyshevNewtonMatrix> newton_matrix_;
+  MatrixXd J_;  ///< the full Newton matrix, only when it is singular (least-squares steps)
+  Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor> linear_scratch_;  ///< D X of one element
   std::vector<Element> elements_;
   std::vector<SE3> charts_;
   int total_nodes_ = 0, nodes_ = 0;
@@ -589,6 +693,7 @@ class ChebyshevSolver {
     Attempt a;
     C.problem().set_load_factor(1.0);
     a.x = C.reference_guess();
+    C.complete_kinematics(a.x);
     auto direct = solve_at(1.0, a.x);
     a.rotation = C.max_chart_rotation(a.x);
     if (!direct.converged && !(may_split && a.rotation > kSplitRotation) && P_.tip_clamped()) {

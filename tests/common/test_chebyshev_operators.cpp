@@ -2,7 +2,8 @@
 #include <boost/test/unit_test.hpp>
 
 // Chebyshev-Lobatto points, differentiation matrix (thesis (2.102), negative-sum diagonal),
-// Clenshaw-Curtis weights and barycentric interpolation (solvers/common/chebyshev_operators.hpp).
+// its inverse with an initial value (integration), Clenshaw-Curtis weights and barycentric
+// interpolation (solvers/common/chebyshev_operators.hpp).
 // References: the Chebyshev polynomials T_k (2.95)-(2.98) and their derivatives k U_{k-1}, whose
 // values are known in closed form; the exact integrals of t^k; the closed-form diagonal of
 // (2.102) as a cross-check of the negative-sum diagonal.
@@ -144,6 +145,30 @@ BOOST_AUTO_TEST_CASE(clenshaw_curtis_integrates_polynomials) {
   const VectorXd simpson = clenshaw_curtis_weights(3);
   BOOST_TEST(simpson[0] == 1.0 / 3.0, boost::test_tools::tolerance(1e-15));
   BOOST_TEST(simpson[1] == 4.0 / 3.0, boost::test_tools::tolerance(1e-15));
+}
+
+// The integration matrix inverts the collocation of u' = g with u(-1) given: for every T_k,
+// k <= n - 1, S [T_k(-1); T_k'(t_1..t_{n-1})] = T_k at the nodes (error scaled by max |T_k'| =
+// k^2, as for D), and D S g = g on rows 1..n-1 for any g.
+BOOST_AUTO_TEST_CASE(integration_inverts_the_initial_value_collocation) {
+  double worst = 0.0;
+  for (int n : kSizes) {
+    const VectorXd t = chebyshev_lobatto_points(n);
+    const MatrixXd S = chebyshev_integration_matrix(n), D = chebyshev_differentiation_matrix(n);
+    for (int k = 0; k < n; ++k) {
+      VectorXd f(n), g(n);
+      for (int j = 0; j < n; ++j) chebyshev_T(k, t[j], f[j], g[j]);
+      g[0] = f[0];
+      const double err = (S * g - f).lpNorm<Eigen::Infinity>() / std::max(1.0, static_cast<double>(k) * k);
+      worst = std::max(worst, err);
+      BOOST_TEST_CONTEXT("n = " << n << ", k = " << k) { BOOST_TEST(err <= 1e-12); }
+    }
+    const VectorXd g = VectorXd::LinSpaced(n, 0.3, -1.1);
+    BOOST_TEST((D * (S * g) - g).tail(n - 1).lpNorm<Eigen::Infinity>() <= 1e-12 * n * n);
+    BOOST_TEST((S * g)[0] == g[0]);  // exactly
+  }
+  BOOST_TEST_MESSAGE("worst scaled error of S on T_k, k < n <= 64: " << worst);
+  BOOST_CHECK_THROW(chebyshev_integration_matrix(1), std::invalid_argument);
 }
 
 // Barycentric interpolation reproduces polynomials of degree <= n - 1 anywhere in [-1, 1] and

@@ -35,6 +35,12 @@ Eigen::VectorXd chebyshev_lobatto_points(int n);
 /// d/dt on those points (n x n): (D f)_i = p'(t_i) for the interpolant p of degree n - 1.
 Eigen::MatrixXd chebyshev_differentiation_matrix(int n);
 
+/// Integration consistent with D (n x n): the inverse of D with its first row replaced by
+/// e_0^T. u = S [u_0; g_1; ...; g_{n-1}] is the polynomial of degree n - 1 with u(-1) = u_0 and
+/// u'(t_j) = g_j for j >= 1, i.e. u_0 plus the integral from -1 of the polynomial of degree n - 2
+/// through (t_j, g_j), j >= 1: the collocation of u' = g with an initial value.
+Eigen::MatrixXd chebyshev_integration_matrix(int n);
+
 /// Clenshaw-Curtis quadrature weights on [-1, 1] for those points.
 Eigen::VectorXd clenshaw_curtis_weights(int n);
 

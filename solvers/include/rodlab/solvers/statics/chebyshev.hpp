@@ -38,27 +38,41 @@
 // moments, E I / L^2 for forces); the tip rows are tip_residual's, already dimensionless. The
 // tolerance applies to the inf-norm of this scaled residual.
 //
-// NEWTON. The Jacobian is dense: the D part is exact (linear, constant), and since row j depends
-// nonlinearly only on node j's 12 unknowns (the D coupling aside) the nonlinear part is block
-// diagonal, computed by central differences of the node's rows (24 node evaluations per node).
-// It is factorised by Eigen's PartialPivLU and reused for chord steps while the residual drops
-// by 10x per step. The line search backtracks on the residual scaled by the Newton matrix,
+// NEWTON. The Jacobian: the D part is exact (linear, constant), and since row j depends
+// nonlinearly only on node j's 12 unknowns (the D coupling aside) the rest is block diagonal,
+// 12 x 12 node blocks: their Lambda columns exact ((2.104) is linear in xi = xi* + K^-1 Lambda,
+// (2.103)'s ad_xi^T Lambda bilinear), their theta columns (dexp^-1 in theta, the loads in R) and
+// the tip node's block by central differences; with elements, the chart blocks too. It is
+// factorised by condensation (chebyshev_newton_matrix.hpp): theta_0 is known; the translations
+// rho are solved per element (the Lambda rows see only rotations, so rho reaches other rows only
+// through a clamped tip's position); each node's moment is eliminated through its rotation rows.
+// That leaves a dense 6N system for Eigen's PartialPivLU (LUs of 144 and 69 instead of 288 at
+// N = 24), and the same Newton steps as the full matrix up to rounding. The
+// factorisation is reused for chord steps while the residual drops by 10x per step; the chord
+// steps allocate nothing. The line search backtracks on the residual scaled by the Newton matrix,
 // |J^-1 F(x + alpha dx)| <= (1 - alpha/4) |dx| (Deuflhard's natural monotonicity test): the
 // plain 2-norm of the scaled residual stalls on the clamped cases, whose first steps must build
 // an axial force of ~10 E I / L^2 (E A L^2 / E I = 1600 for the Table 2.1 rod) that the
 // residual norm penalises. Converged when the inf-norm of the scaled residual is <= tol, or when
 // it stalls within 10x of its rounding level eps max_j sum_k |D_jk| |x_k|, which grows like
-// N^2 |x| (a tight tol is out of reach at large N). A singular Newton matrix (the straight Kirchhoff rod with
-// both ends clamped: its axial force is undetermined to first order) gets minimum-norm
-// least-squares steps (CompleteOrthogonalDecomposition) until it is regular again.
+// N^2 |x| (a tight tol is out of reach at large N). A singular Newton matrix (the straight
+// Kirchhoff rod with both ends clamped: its axial force is undetermined to first order) gets
+// minimum-norm least-squares steps with the full 12N matrix (CompleteOrthogonalDecomposition)
+// until it is regular again.
 //
 // GUESSES. First the reference configuration theta_j = s_j xi* with Lambda the equilibrium of the
 // undeformed rod with the loads, marched along s (rigid_wrench_profile in shooting.hpp, the idea
-// of shooting's rigid_base_wrench). For a clamped tip whose direct solve fails, second the
-// constant twist joining base and target, xi_c = log(g_0^-1 g_target) / L (thesis 2.5), with
-// Lambda = K (xi_c - xi*); it is exact for a target at the end of a circular arc. Then load
-// continuation (continuation.hpp) from load factor 0, where the reference guess is exact, within
-// a budget of 4 max_iterations Newton iterations per element layout.
+// of shooting's rigid_base_wrench). The direct solve starts from it bent by that Lambda: theta
+// from the theta rows (2.104) with Lambda fixed (two fixed-point sweeps theta = S (L/2)
+// dexp^-1_{-theta} xi(Lambda), S = chebyshev_integration_matrix), the linear-elastic deflection,
+// so that the first Newton matrix is evaluated near the solution (5 Newton iterations instead of
+// 8 on the gravity cantilever at tol 1e-10). Only while no chart then turns by more than pi / 3:
+// beyond, the undeformed rod's wrench over-bends the rod (a dead tip load PL^2/EI = 10 would bend
+// it by 5 rad), and the straight configuration is kept. For a clamped tip whose direct solve
+// fails, second the constant twist joining base and target, xi_c = log(g_0^-1 g_target) / L
+// (thesis 2.5), with Lambda = K (xi_c - xi*); it is exact for a target at the end of a circular
+// arc. Then load continuation (continuation.hpp) from load factor 0, where the reference guess
+// (straight) is exact, within a budget of 4 max_iterations Newton iterations per element layout.
 //
 // SPECTRAL ELEMENTS FOR LARGE ROTATIONS. The chart g_0 exp(theta) ends where |omega(theta)| = 2 pi
 // (dexp^-1 has its pole there) and degrades before it, so one chart cannot hold a rod that curls

@@ -104,6 +104,12 @@ class StaticProblem {
     if (model_.is_kirchhoff()) xi.tail<3>() = model_.xi_star().tail<3>();
     return xi;
   }
+  /// d xi / d Lambda of strain() above, a diagonal: K^-1 (Kirchhoff: zero on nu).
+  Vector6 strain_slope() const {
+    Vector6 slope = model_.K_inv_diag();
+    if (model_.is_kirchhoff()) slope.tail<3>().setZero();
+    return slope;
+  }
   /// Internal wrench of the rod from strain: K (xi - xi*).
   Vector6 rod_wrench(const Vector6& xi) const {
     return model_.K_diag().cwiseProduct(xi - model_.xi_star());
