@@ -1,21 +1,17 @@
 #include "rodlab/solvers/common/kinsol_solver.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdlib>
 #include <exception>
 #include <string>
-#include <type_traits>
-#include <vector>
 
 #include <kinsol/kinsol.h>
-#include <nvector/nvector_serial.h>
-#include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_klu.h>
-#include <sunmatrix/sunmatrix_sparse.h>
+
+#include "sundials_support.hpp"
 
 namespace rodlab::solvers {
 namespace {
+
+using sundials::view;
 
 // --- flag names and checks ------------------------------------------------------------------
 
@@ -72,51 +68,17 @@ void check_kinls(int flag, const char* call) {
     throw std::runtime_error(std::string("KINSOL: ") + call + " failed with " + kinls_flag_name(flag));
 }
 
-template <class T>
-T check_created(T object, const char* call) {
-  if (object == nullptr) throw std::runtime_error(std::string("KINSOL: ") + call + " returned NULL");
-  return object;
-}
-
-// --- RAII owners ----------------------------------------------------------------------------
-
-struct ContextDeleter {
-  void operator()(SUNContext ctx) const { SUNContext_Free(&ctx); }
-};
-struct VectorDeleter {
-  void operator()(N_Vector v) const { N_VDestroy(v); }
-};
-struct MatrixDeleter {
-  void operator()(SUNMatrix A) const { SUNMatDestroy(A); }
-};
-struct LinearSolverDeleter {
-  void operator()(SUNLinearSolver LS) const { SUNLinSolFree(LS); }
-};
-struct KinsolMemoryDeleter {
-  void operator()(void* mem) const { KINFree(&mem); }
-};
-
-using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
-using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
-using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
-using LinearSolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
-using KinsolMemoryPtr = std::unique_ptr<void, KinsolMemoryDeleter>;
-
-Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
-  return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
-}
-
 }  // namespace
 
 struct KinsolSolver::Impl {
+  explicit Impl(const SparseMatrix& pattern) : pattern(pattern, "KinsolSolver") {}
+
   // Declaration order is destruction order reversed: the context outlives everything.
-  ContextPtr context;
-  VectorPtr u, u_scale, f_scale;
-  MatrixPtr A;
-  LinearSolverPtr linear_solver;
-  int n = 0;
-  SparseMatrix J;  // the fixed pattern; the Jacobian callback writes its values
-  std::vector<sunindextype> column_pointers, row_indices;
+  sundials::ContextPtr context;
+  sundials::VectorPtr u, u_scale, f_scale;
+  sundials::MatrixPtr A;
+  sundials::LinearSolverPtr linear_solver;
+  sundials::JacobianPattern pattern;  // the callback writes its values
 
   /// What the C callbacks need during one solve.
   struct Call {
@@ -127,19 +89,9 @@ struct KinsolSolver::Impl {
     std::string message;
   };
 
-  /// Runs a callback body: a KinsolRecoverableError becomes the recoverable flag 1 with its
-  /// message; any other exception is kept for rethrowing after KINSol returns (flag -1).
   template <class Body>
   static int guarded(Call* call, Body&& body) {
-    try {
-      return body();
-    } catch (const KinsolRecoverableError& e) {
-      call->message = e.what();
-      return 1;
-    } catch (...) {
-      call->error = std::current_exception();
-      return -1;
-    }
+    return sundials::guarded<KinsolRecoverableError>(call->message, call->error, body);
   }
 
   static int residual_callback(N_Vector u, N_Vector F, void* user_data) {
@@ -154,78 +106,43 @@ struct KinsolSolver::Impl {
   static int jacobian_callback(N_Vector u, N_Vector F, SUNMatrix A, void* user_data, N_Vector,
                                N_Vector) {
     auto* call = static_cast<Call*>(user_data);
-    Impl& self = *call->self;
     return guarded(call, [&] {
-      SparseMatrix& J = self.J;
-      std::fill(J.valuePtr(), J.valuePtr() + J.nonZeros(), 0.0);
-      (*call->jacobian)(view(u), view(F), J);
-      self.check_pattern();
-      const double* values = J.valuePtr();
-      if (!std::all_of(values, values + J.nonZeros(), [](double v) { return std::isfinite(v); })) {
-        call->message = "the Jacobian has non-finite entries";
-        return 1;
-      }
-      // KINLS zeroes the matrix, index arrays included (SUNMatZero_Sparse), before this call.
-      std::copy(self.column_pointers.begin(), self.column_pointers.end(), SUNSparseMatrix_IndexPointers(A));
-      std::copy(self.row_indices.begin(), self.row_indices.end(), SUNSparseMatrix_IndexValues(A));
-      std::copy(values, values + J.nonZeros(), SUNSparseMatrix_Data(A));
-      return 0;
+      const bool finite = call->self->pattern.fill(
+          A, [&](SparseMatrix& J) { (*call->jacobian)(view(u), view(F), J); });
+      if (finite) return 0;
+      call->message = "the Jacobian has non-finite entries";
+      return 1;
     });
   }
 
   static void error_handler(int, const char* module, const char* function, char* msg, void* user_data) {
-    auto* call = static_cast<Call*>(user_data);
-    call->message = std::string(module ? module : "") + "::" + (function ? function : "") + ": " +
-                    (msg ? msg : "");
-  }
-
-  void check_pattern() const {
-    const auto nnz = static_cast<std::size_t>(J.nonZeros());
-    bool same = J.isCompressed() && nnz == row_indices.size() && J.rows() == n && J.cols() == n;
-    for (int j = 0; same && j <= n; ++j) same = J.outerIndexPtr()[j] == column_pointers[j];
-    for (std::size_t k = 0; same && k < nnz; ++k) same = J.innerIndexPtr()[k] == row_indices[k];
-    if (!same)
-      throw std::logic_error(
-          "KinsolSolver: the Jacobian callback changed the sparsity pattern (only values may be set)");
+    static_cast<Call*>(user_data)->message = sundials::error_text(module, function, msg);
   }
 };
 
-KinsolSolver::KinsolSolver(const SparseMatrix& pattern) : impl_(std::make_unique<Impl>()) {
-  if (pattern.rows() != pattern.cols() || pattern.rows() == 0)
-    throw std::invalid_argument("KinsolSolver: expected a square non-empty Jacobian pattern, got " +
-                                std::to_string(pattern.rows()) + " x " + std::to_string(pattern.cols()));
+KinsolSolver::KinsolSolver(const SparseMatrix& pattern) : impl_(std::make_unique<Impl>(pattern)) {
   Impl& d = *impl_;
-  d.n = static_cast<int>(pattern.rows());
-  d.J = pattern;
-  d.J.makeCompressed();
-  if (d.J.nonZeros() == 0) throw std::invalid_argument("KinsolSolver: the Jacobian pattern is empty");
-  std::fill(d.J.valuePtr(), d.J.valuePtr() + d.J.nonZeros(), 0.0);
-  d.column_pointers.assign(d.J.outerIndexPtr(), d.J.outerIndexPtr() + d.n + 1);
-  d.row_indices.assign(d.J.innerIndexPtr(), d.J.innerIndexPtr() + d.J.nonZeros());
-
-  SUNContext ctx = nullptr;
-  if (const int flag = SUNContext_Create(nullptr, &ctx); flag != 0 || ctx == nullptr)
-    throw std::runtime_error("KINSOL: SUNContext_Create failed with flag " + std::to_string(flag));
-  d.context.reset(ctx);
-  d.u.reset(check_created(N_VNew_Serial(d.n, ctx), "N_VNew_Serial"));
-  d.u_scale.reset(check_created(N_VNew_Serial(d.n, ctx), "N_VNew_Serial"));
-  d.f_scale.reset(check_created(N_VNew_Serial(d.n, ctx), "N_VNew_Serial"));
-  d.A.reset(check_created(SUNSparseMatrix(d.n, d.n, d.J.nonZeros(), CSC_MAT, ctx), "SUNSparseMatrix"));
-  std::copy(d.column_pointers.begin(), d.column_pointers.end(), SUNSparseMatrix_IndexPointers(d.A.get()));
-  std::copy(d.row_indices.begin(), d.row_indices.end(), SUNSparseMatrix_IndexValues(d.A.get()));
-  d.linear_solver.reset(check_created(SUNLinSol_KLU(d.u.get(), d.A.get(), ctx), "SUNLinSol_KLU"));
+  const int n = d.pattern.size();
+  d.context = sundials::make_context("KINSOL");
+  SUNContext ctx = d.context.get();
+  d.u = sundials::make_vector(n, ctx, "KINSOL");
+  d.u_scale = sundials::make_vector(n, ctx, "KINSOL");
+  d.f_scale = sundials::make_vector(n, ctx, "KINSOL");
+  d.A = d.pattern.make_matrix(ctx);
+  d.linear_solver.reset(
+      sundials::check_created(SUNLinSol_KLU(d.u.get(), d.A.get(), ctx), "KINSOL", "SUNLinSol_KLU"));
 }
 
 KinsolSolver::~KinsolSolver() = default;
 KinsolSolver::KinsolSolver(KinsolSolver&&) noexcept = default;
 KinsolSolver& KinsolSolver::operator=(KinsolSolver&&) noexcept = default;
 
-int KinsolSolver::size() const { return impl_->n; }
+int KinsolSolver::size() const { return impl_->pattern.size(); }
 
 KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacobian& jacobian,
                                 const KinsolOptions& options) {
   Impl& d = *impl_;
-  const auto n = static_cast<Eigen::Index>(d.n);
+  const auto n = static_cast<Eigen::Index>(d.pattern.size());
   auto expect_size = [&](const Vector& v, const char* what) {
     if (v.size() != n)
       throw std::invalid_argument(std::string("KinsolSolver::solve: ") + what + ": expected size " +
@@ -265,7 +182,8 @@ KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacob
 
   // A fresh KINSOL memory per solve: its counters are this solve's, and no state leaks between
   // solves; the context, vectors, matrix and KLU solver are reused.
-  KinsolMemoryPtr memory(check_created(KINCreate(d.context.get()), "KINCreate"));
+  sundials::MemoryPtr<KINFree> memory(
+      sundials::check_created(KINCreate(d.context.get()), "KINSOL", "KINCreate"));
   void* mem = memory.get();
   check_kin(KINInit(mem, &Impl::residual_callback, d.u.get()), "KINInit");
   check_kin(KINSetUserData(mem, &call), "KINSetUserData");

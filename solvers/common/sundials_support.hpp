@@ -1,0 +1,181 @@
+#pragma once
+// What the two SUNDIALS adapters (kinsol_solver.cpp, ida_solver.cpp) share, so that neither
+// repeats the other: RAII owners of the SUNDIALS objects, Eigen views of serial N_Vectors, the
+// guard that turns a callback's exception into a SUNDIALS flag, and the fixed CSC sparsity
+// pattern that an Eigen Jacobian callback fills and that is copied into the KLU SUNMatrix.
+// Private to solvers/common: together with the two adapters, the only code that includes
+// SUNDIALS headers.
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+namespace rodlab::solvers::sundials {
+
+// --- RAII owners ----------------------------------------------------------------------------
+
+struct ContextDeleter {
+  void operator()(SUNContext ctx) const { SUNContext_Free(&ctx); }
+};
+struct VectorDeleter {
+  void operator()(N_Vector v) const { N_VDestroy(v); }
+};
+struct MatrixDeleter {
+  void operator()(SUNMatrix A) const { SUNMatDestroy(A); }
+};
+struct LinearSolverDeleter {
+  void operator()(SUNLinearSolver LS) const { SUNLinSolFree(LS); }
+};
+/// KINFree and IDAFree take the address of the memory pointer.
+template <void (*Free)(void**)>
+struct MemoryDeleter {
+  void operator()(void* mem) const { Free(&mem); }
+};
+
+using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
+using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
+using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
+using LinearSolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
+template <void (*Free)(void**)>
+using MemoryPtr = std::unique_ptr<void, MemoryDeleter<Free>>;
+
+/// `object`, or std::runtime_error("<module>: <call> returned NULL").
+template <class T>
+T check_created(T object, std::string_view module, const char* call) {
+  if (object == nullptr)
+    throw std::runtime_error(std::string(module) + ": " + call + " returned NULL");
+  return object;
+}
+
+inline ContextPtr make_context(std::string_view module) {
+  SUNContext ctx = nullptr;
+  if (const int flag = SUNContext_Create(nullptr, &ctx); flag != 0 || ctx == nullptr)
+    throw std::runtime_error(std::string(module) + ": SUNContext_Create failed with flag " +
+                             std::to_string(flag));
+  return ContextPtr(ctx);
+}
+
+inline VectorPtr make_vector(int n, SUNContext ctx, std::string_view module) {
+  return VectorPtr(check_created(N_VNew_Serial(n, ctx), module, "N_VNew_Serial"));
+}
+
+/// The storage of a serial N_Vector as an Eigen vector.
+inline Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
+  return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
+}
+
+// --- callbacks --------------------------------------------------------------------------------
+
+/// Runs a callback body (returning a SUNDIALS flag): an exception of type Recoverable becomes
+/// the recoverable flag 1 with its message; any other exception is kept in `error` for
+/// rethrowing once the SUNDIALS call has returned (flag -1: unrecoverable, the solver stops).
+/// deal.II's pattern: C code never unwinds a C++ exception.
+template <class Recoverable, class Body>
+int guarded(std::string& message, std::exception_ptr& error, Body&& body) {
+  try {
+    return body();
+  } catch (const Recoverable& e) {
+    message = e.what();
+    return 1;
+  } catch (...) {
+    error = std::current_exception();
+    return -1;
+  }
+}
+
+/// The text of a SUNDIALS error-handler call: "module::function: message".
+inline std::string error_text(const char* module, const char* function, const char* msg) {
+  return std::string(module ? module : "") + "::" + (function ? function : "") + ": " +
+         (msg ? msg : "");
+}
+
+// --- the Jacobian's sparsity pattern ----------------------------------------------------------
+
+/// A square CSC sparsity pattern fixed at construction. The callback fills the values of an
+/// Eigen matrix with exactly this pattern; fill() checks the pattern, the finiteness of the
+/// values, and copies them into the SUNMatrix (whose index arrays SUNMatZero_Sparse clears
+/// before every Jacobian call, so they are copied too).
+class JacobianPattern {
+ public:
+  using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
+
+  /// `owner` names the adapter in messages (e.g. "KinsolSolver"). Throws std::invalid_argument
+  /// for a non-square, empty or structurally empty pattern.
+  JacobianPattern(const SparseMatrix& pattern, std::string_view owner) : owner_(owner) {
+    if (pattern.rows() != pattern.cols() || pattern.rows() == 0)
+      throw std::invalid_argument(owner_ + ": expected a square non-empty Jacobian pattern, got " +
+                                  std::to_string(pattern.rows()) + " x " +
+                                  std::to_string(pattern.cols()));
+    J_ = pattern;
+    J_.makeCompressed();
+    if (J_.nonZeros() == 0) throw std::invalid_argument(owner_ + ": the Jacobian pattern is empty");
+    std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
+    pristine_ = J_;
+    column_pointers_.assign(J_.outerIndexPtr(), J_.outerIndexPtr() + size() + 1);
+    row_indices_.assign(J_.innerIndexPtr(), J_.innerIndexPtr() + J_.nonZeros());
+  }
+
+  int size() const { return static_cast<int>(J_.rows()); }
+
+  /// A KLU-ready CSC SUNMatrix with this pattern.
+  MatrixPtr make_matrix(SUNContext ctx) const {
+    MatrixPtr A(check_created(SUNSparseMatrix(size(), size(), J_.nonZeros(), CSC_MAT, ctx),
+                              "SUNDIALS", "SUNSparseMatrix"));
+    copy_indices(A.get());
+    return A;
+  }
+
+  /// Zeroes the values, runs fill(J), and copies J into A. Returns false (A untouched) when a
+  /// value is not finite; throws std::logic_error, with the pattern restored, when fill changed
+  /// the pattern.
+  template <class Fill>
+  bool fill(SUNMatrix A, Fill&& fill_values) {
+    std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
+    fill_values(J_);
+    if (!same_pattern()) {
+      J_ = pristine_;
+      throw std::logic_error(owner_ +
+                             ": the Jacobian callback changed the sparsity pattern (only values "
+                             "may be set)");
+    }
+    const double* values = J_.valuePtr();
+    if (!std::all_of(values, values + J_.nonZeros(), [](double v) { return std::isfinite(v); }))
+      return false;
+    copy_indices(A);
+    std::copy(values, values + J_.nonZeros(), SUNSparseMatrix_Data(A));
+    return true;
+  }
+
+ private:
+  bool same_pattern() const {
+    const auto nnz = static_cast<std::size_t>(J_.nonZeros());
+    bool same = J_.isCompressed() && nnz == row_indices_.size() && J_.rows() == size() &&
+                J_.cols() == size();
+    for (int j = 0; same && j <= size(); ++j) same = J_.outerIndexPtr()[j] == column_pointers_[j];
+    for (std::size_t k = 0; same && k < nnz; ++k) same = J_.innerIndexPtr()[k] == row_indices_[k];
+    return same;
+  }
+
+  void copy_indices(SUNMatrix A) const {
+    std::copy(column_pointers_.begin(), column_pointers_.end(), SUNSparseMatrix_IndexPointers(A));
+    std::copy(row_indices_.begin(), row_indices_.end(), SUNSparseMatrix_IndexValues(A));
+  }
+
+  std::string owner_;
+  SparseMatrix J_, pristine_;
+  std::vector<sunindextype> column_pointers_, row_indices_;
+};
+
+}  // namespace rodlab::solvers::sundials
