@@ -93,6 +93,7 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
       have_J = false;  // a stale Broyden Jacobian: refresh it and retry from the same x
       continue;
     }
+    if (alpha < 1.0) ++out.backtracks;
     const VectorXd s = x_new - out.x;
     const double ratio = F_new.norm() / f0;
     if (options.broyden && ratio < 0.5) {

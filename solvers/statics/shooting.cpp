@@ -10,6 +10,10 @@
 namespace rodlab::solvers::statics {
 namespace {
 
+/// A direct Newton solve that needs more iterations than this (from the rigid-rod guess, ordinary
+/// loads take 3-8) is checked by the load continuation, as one whose line search cut steps.
+constexpr int kTrustedDirectIterations = 10;
+
 using Eigen::VectorXd;
 
 /// (2.34) marched back from the tip along the undeformed rod (xi = xi*) with classical RK4:
@@ -117,14 +121,20 @@ class ShootingSolver {
     bool converged = direct.converged;
     std::string reason = direct.reason;
     double residual = direct.residual_norm;
-    if (!converged) {
+    // The direct-solve rule (kinsol has its own): a direct solve whose line search had to cut
+    // steps, or that wandered for many iterations, may have jumped to another equilibrium branch
+    // (under a large dead load, an unstable one: the rod folded back over its base; measured with
+    // rkmk-rk4 at P L^2/EI = 41, tests/statics/test_dead_load_branch).
+    // The load continuation follows the branch from the unloaded rod and decides; a converged
+    // direct solution is kept if the continuation fails.
+    if (!converged || direct.backtracks > 0 || direct.iterations > kTrustedDirectIterations) {
       auto cont = continuation();
-      converged = cont.converged;
-      if (converged) {
+      if (cont.converged) {
+        converged = true;
         x = cont.state;
         residual = cont.residual_norm;
         reason.clear();
-      } else {
+      } else if (!converged) {
         reason = "direct Newton: " + reason + "; continuation: " + cont.reason;
       }
     }
@@ -177,8 +187,11 @@ class ShootingSolver {
   ContinuationResult continuation() {
     Continuation walk;
     walk.correct = [this](double lf, const VectorXd& guess) {
+      // A corrector whose line search cut steps may have left the branch: a shorter load step.
       const NewtonResult r = solve_at(lf, guess);
-      return CorrectorResult{r.converged, r.x, r.residual_norm, r.reason};
+      const bool on_branch = r.converged && r.backtracks == 0;
+      return CorrectorResult{on_branch, r.x, r.residual_norm,
+                             r.converged && !on_branch ? "the corrector's line search cut steps" : r.reason};
     };
     walk.first_predictor = [this](double from, double to, const VectorXd& x) {
       return VectorXd(x + rigid_guess(to) - rigid_guess(from));

@@ -27,6 +27,7 @@ struct NewtonResult {
   double residual_norm = 0.0;   ///< |F|_inf at x
   int iterations = 0;
   int evaluations = 0;          ///< calls of F, including those of the Jacobians
+  int backtracks = 0;           ///< accepted steps that the line search had to shorten
   bool converged = false;
   std::string reason;           ///< why not, when not converged
 };
