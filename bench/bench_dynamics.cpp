@@ -10,7 +10,9 @@
 
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/rod/energies.hpp"
+#include "rodlab/solvers/dynamics/bdf_alpha.hpp"
 #include "rodlab/solvers/dynamics/implicit_midpoint.hpp"
+#include "rodlab/solvers/dynamics/implicit_midpoint_collocation.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/dynamics/variational.hpp"
 
@@ -44,7 +46,11 @@ void step_benchmark(benchmark::State& state, std::string scheme) {
   const int n = static_cast<int>(state.range(0));
   const double dt = auto_time_step(problem, scheme, n);
   const RestState initial = straight(problem, n);
-  auto fresh = [&] {
+  auto fresh = [&]() -> std::unique_ptr<Stepper> {
+    if (scheme == "implicit-midpoint-collocation")
+      return make_implicit_midpoint_collocation(problem, {.nodes = n}, initial);
+    if (scheme == "bdf-alpha")  // Till's alpha = -0.2
+      return make_bdf_alpha(problem, {n, 1e-10, 50, kDefaultBdfAlpha}, initial);
     return scheme == "variational" ? make_variational(problem, {n, 1e-12, 20}, initial)
                                    : make_implicit_midpoint(problem, {n, 1e-10, 50}, initial);
   };
@@ -81,12 +87,17 @@ void step_benchmark(benchmark::State& state, std::string scheme) {
 }
 
 const bool registered = [] {
-  for (const char* scheme : {"variational", "implicit-midpoint"}) {
+  for (const char* scheme : {"variational", "implicit-midpoint", "bdf-alpha"}) {
     auto* b = benchmark::RegisterBenchmark((std::string("step/") + scheme).c_str(), step_benchmark,
                                            std::string(scheme));
     for (int n : {10, 20, 50, 100}) b->Arg(n);
     b->Unit(benchmark::kMicrosecond);
   }
+  // implicit-midpoint-collocation: KINSOL + KLU on the whole rod per step (cost per node-step).
+  auto* c = benchmark::RegisterBenchmark("step/implicit-midpoint-collocation", step_benchmark,
+                                         std::string("implicit-midpoint-collocation"));
+  for (int n : {20, 100}) c->Arg(n);
+  c->Unit(benchmark::kMicrosecond);
   return true;
 }();
 

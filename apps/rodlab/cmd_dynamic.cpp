@@ -13,9 +13,9 @@ namespace rodlab::cli {
 namespace {
 
 constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
-constexpr std::array<OptionSpec, 8> kOptions{kSchemeOption,  kNodesOption, kTolOption,
-                                             kDtOption,      kTEndOption,  kOutputEveryOption,
-                                             kOutFileOption, kSetOption};
+constexpr std::array<OptionSpec, 11> kOptions{
+    kSchemeOption,      kNodesOption,   kTolOption, kDtOption,   kTEndOption,
+    kOutputEveryOption, kOutFileOption, kSetOption, kRtolOption, kAtolOption, kAlphaOption};
 
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);
@@ -43,7 +43,8 @@ const Command& dynamic_command() {
       "is --scheme, else dynamics.scheme, else solver.scheme if it names a dynamics scheme,\n"
       "else variational (`rodlab schemes` lists them). --dt auto (the default when neither\n"
       "--dt nor dynamics.dt is given) is 0.9 times the measured stability limit of\n"
-      "variational, or 1/10 of the first bending period for the implicit schemes. The\n"
+      "variational, or 1/10 of the first bending period for the implicit schemes (for ida\n"
+      "the output interval; its own steps follow --rtol and --atol). The\n"
       "options and the scene are checked before anything runs. The result\n"
       "(rodlab.dynamic-result/1) is printed as a summary and, with --out, written atomically\n"
       "as JSON or as CSV (one row per output time).\n"

@@ -101,6 +101,14 @@ SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::stri
   }
   o.t_end = reader.positive(kTEndOption.name);
   o.output_every = reader.integer(kOutputEveryOption.name, 1);
+  o.rtol = reader.positive(kRtolOption.name);
+  o.atol = reader.positive(kAtolOption.name);
+  if (const auto alpha = reader.text(kAlphaOption.name)) {
+    if (const auto v = to_double(*alpha); v && *v >= -0.5 && *v <= 0.0)
+      o.alpha = *v;
+    else
+      reader.problem("--alpha: must be a number in [-0.5, 0] (got " + *alpha + ")");
+  }
   return o;
 }
 
@@ -164,6 +172,9 @@ DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& 
     throw UsageError("--dt: the time step " + format_number(run.dt.value) +
                      " s exceeds the end time " + format_number(run.t_end) + " s");
   run.output_every = options.output_every.value_or(dynamics.output_every);
+  run.rtol = options.rtol.value_or(run.rtol);
+  run.atol = options.atol.value_or(run.atol);
+  run.alpha = options.alpha.value_or(scene.solver.alpha.value_or(run.alpha));
   return run;
 }
 

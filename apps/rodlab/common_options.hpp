@@ -30,6 +30,13 @@ inline constexpr OptionSpec kSetOption{
 inline constexpr OptionSpec kDtOption{
     "--dt", "X|auto", "time step > 0, or auto (the explicit step (3.44)); default: dynamics.dt"};
 inline constexpr OptionSpec kTEndOption{"--t-end", "T", "end time > 0; default: dynamics.t_end"};
+inline constexpr OptionSpec kRtolOption{
+    "--rtol", "X", "ida: relative tolerance of the time integration > 0; default: 1e-10"};
+inline constexpr OptionSpec kAtolOption{
+    "--atol", "X", "ida: absolute tolerance > 0 (scaled per component); default: 1e-10"};
+inline constexpr OptionSpec kAlphaOption{
+    "--alpha", "X",
+    "bdf-alpha: alpha in [-0.5, 0] (0 BDF2, -0.5 trapezoidal); default: solver.alpha, else -0.2"};
 inline constexpr OptionSpec kOutputEveryOption{
     "--output-every", "K", "record every K-th step, integer >= 1; default: dynamics.output_every"};
 
@@ -58,6 +65,8 @@ struct SolveOptions {
   std::optional<TimeStep> dt;
   std::optional<double> t_end;
   std::optional<int> output_every;
+  std::optional<double> rtol, atol;
+  std::optional<double> alpha;  ///< bdf-alpha
 };
 
 /// Reads the options of `command` that are among the shared ones above, recording problems
@@ -96,6 +105,8 @@ struct DynamicRun {
   double t_end = 0.0;
   TimeStep dt;
   int output_every = 1;
+  double rtol = 1e-10, atol = 1e-10;  ///< ida's tolerances
+  double alpha = -0.2;                ///< bdf-alpha's parameter (solver.alpha, --alpha)
 };
 
 /// Combine options and scene; throws io::SceneError when the scene's own scheme does not fit

@@ -26,6 +26,9 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicRun&
   options.output_every = run.output_every;
   options.tol = run.tol;
   options.max_iterations = run.max_iterations;
+  options.rtol = run.rtol;
+  options.atol = run.atol;
+  options.alpha = run.alpha;
   if (scene.dynamics) options.initial = scene.dynamics->initial;
   return solvers::dynamics::solve_dynamic(scene, options);
 }

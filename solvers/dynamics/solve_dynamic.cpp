@@ -9,7 +9,10 @@
 
 #include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/schemes.hpp"
+#include "rodlab/solvers/dynamics/bdf_alpha.hpp"
+#include "rodlab/solvers/dynamics/ida_reference.hpp"
 #include "rodlab/solvers/dynamics/implicit_midpoint.hpp"
+#include "rodlab/solvers/dynamics/implicit_midpoint_collocation.hpp"
 #include "rodlab/solvers/dynamics/variational.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
@@ -57,6 +60,24 @@ std::unique_ptr<Stepper> make_stepper(const DynamicProblem& problem,
   if (options.scheme == "implicit-midpoint")
     return make_implicit_midpoint(problem, {options.nodes, options.tol, options.max_iterations},
                                   initial);
+  if (options.scheme == "bdf-alpha")
+    return make_bdf_alpha(problem,
+                          {options.nodes, options.tol, options.max_iterations, options.alpha},
+                          initial);
+  if (options.scheme == "ida") {
+    IdaOptions io;
+    io.nodes = options.nodes;
+    io.rtol = options.rtol;
+    io.atol = options.atol;
+    return make_ida(problem, io, initial);
+  }
+  if (options.scheme == "implicit-midpoint-collocation") {
+    ImplicitMidpointCollocationOptions co;
+    co.nodes = options.nodes;
+    co.tol = options.tol;
+    co.max_iterations = options.max_iterations;
+    return make_implicit_midpoint_collocation(problem, co, initial);
+  }
   const auto info = find_scheme(options.scheme);
   if (!info || info->problem != Problem::dynamics)
     throw std::invalid_argument("unknown dynamics scheme '" + options.scheme + "' (valid: " +

@@ -64,12 +64,14 @@ scene::Dynamics read_dynamics(Checker& c, const Field& f) {
 
 scene::Solver read_solver(Checker& c, const Field& f) {
   scene::Solver s;
-  if (!c.keys(f, {"scheme", "nodes", "tol", "max_iterations"})) return s;
+  if (!c.keys(f, {"scheme", "nodes", "tol", "max_iterations", "alpha"})) return s;
   const auto all_names = names(false);
   if (auto k = c.choice(c.child(f, "scheme"), all_names)) s.scheme = std::string(all_names[*k]);
   if (auto nodes = c.integer(c.child(f, "nodes"), 2)) s.nodes = *nodes;
   if (auto tol = c.number(c.child(f, "tol"), Range::positive())) s.tol = *tol;
   if (auto it = c.integer(c.child(f, "max_iterations"), 1)) s.max_iterations = *it;
+  // bdf-alpha: 0 is BDF2, -0.5 the trapezoidal rule (Till, Aloi & Rucker 2019)
+  s.alpha = c.number(c.child(f, "alpha"), Range{-0.5, 0.0, false, false});
   return s;
 }
 

@@ -137,6 +137,7 @@ struct Solver {
   int nodes = 24;
   double tol = 1e-10;
   int max_iterations = 50;
+  std::optional<double> alpha;  ///< `bdf-alpha`: alpha in [-0.5, 0]; nullopt: the scheme's default
 };
 
 struct Scene {

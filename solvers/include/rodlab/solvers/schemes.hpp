@@ -12,7 +12,7 @@ enum class Problem { statics, dynamics };
 struct SchemeInfo {
   std::string_view name;
   Problem problem;
-  std::string_view order;   ///< observed/design order in the discretisation ("1", "2", "4", "spectral")
+  std::string_view order;   ///< design order: statics "1", "2", "4", ">=4", "spectral"; dynamics "p (t) / q (s)"
   bool implicit;            ///< implicit in the marching direction (s for statics, t for dynamics)
   bool reference;           ///< the SUNDIALS reference of its problem class
   std::string_view method;  ///< one-line description

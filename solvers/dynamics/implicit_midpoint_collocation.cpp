@@ -1,0 +1,249 @@
+#include "rodlab/solvers/dynamics/implicit_midpoint_collocation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rodlab/solvers/common/kinsol_solver.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete_rod.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
+
+namespace rodlab::solvers::dynamics {
+namespace {
+
+/// Levels of step halving after a failed solve (down to dt / 2^kMaxSplits).
+constexpr int kMaxSplits = 6;
+
+using Vector = Eigen::VectorXd;
+using ConstRef = Eigen::Ref<const Vector>;
+
+/// Rounding floor of the scaled residual: f is evaluated to about eps |p| omega_max^2 (elastic
+/// forces from differences of positions over ds, divided by the node mass), i.e. eps
+/// (omega_max / omega_1)^2 in the scaled norm; a safety factor on top.
+constexpr double kRoundingFloor = 2.0;
+/// A solve needing more iterations than this refreshes the Jacobian for the next step.
+constexpr int kSlowSolve = 8;
+
+class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStepper {
+ public:
+  ImplicitMidpointCollocation(const DynamicProblem& problem,
+                              const ImplicitMidpointCollocationOptions& options,
+                              std::span<const SE3> g0)
+      : rod_(problem, options.nodes, "implicit-midpoint-collocation"),
+        kinsol_(rod_.pattern(false)) {
+    if (!(options.tol > 0.0))
+      throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");
+    if (options.max_iterations < 1 || options.max_setup_calls < 1 || options.jacobian_max_age < 1)
+      throw std::invalid_argument(
+          "implicit-midpoint-collocation: max_iterations, max_setup_calls and jacobian_max_age "
+          "must be >= 1");
+    n_ = rod_.node_size();
+    max_age_ = options.jacobian_max_age;
+    max_setup_calls_ = options.max_setup_calls;
+    y_ = rod_.rest_state(g0);
+    ym_ = y_.head(n_);
+    z_ = z0_ = trial_ = F_ = Vector::Zero(n_);
+    k1_ = k2_ = Vector::Zero(n_);
+    f_ = Vector::Zero(rod_.size());
+    w_ = rod_.tolerance_scale().head(n_) * rod_.omega1();  // rate scale of each row
+    const double omega_max = variational_max_frequency(problem.model(), options.nodes);
+    const double floor = kRoundingFloor * std::numeric_limits<double>::epsilon() *
+                         std::pow(omega_max / rod_.omega1(), 2);
+    ko_.fnormtol = std::max(options.tol, floor);
+    ko_.max_iterations = options.max_iterations;
+    ko_.max_setup_calls = options.max_setup_calls;
+    ko_.line_search = true;
+    ko_.f_scale = w_.cwiseInverse();
+    ko_.u_scale = Vector::Ones(n_);
+    cached_ = Vector::Zero(rod_.pattern(false).nonZeros());
+
+    residual_ = [this](const ConstRef& z, Eigen::Ref<Vector> F) {
+      ym_ = y_.head(n_) + z;
+      rod_.rhs(h_, ym_, F);
+      F = a_ * z - F;
+    };
+    jacobian_ = [this](const ConstRef& z, const ConstRef&, KinsolSolver::SparseMatrix& J) {
+      const bool reuse = jacobian_calls_ == 0 && cache_valid_;
+      ++jacobian_calls_;
+      if (reuse) {
+        // dF/dz = a I - df/dy: the stored one with the diagonal moved to this step's a.
+        std::copy(cached_.data(), cached_.data() + cached_.size(), J.valuePtr());
+        if (a_ != cached_a_)
+          for (int i = 0; i < n_; ++i) J.coeffRef(i, i) += a_ - cached_a_;
+        return;
+      }
+      ym_ = y_.head(n_) + z;
+      rod_.newton_matrix(h_, ym_, a_, 1.0, J);
+      std::copy(J.valuePtr(), J.valuePtr() + cached_.size(), cached_.data());
+      cached_a_ = a_;
+      cache_valid_ = true;
+      age_ = 0;
+      ++fresh_jacobians_;
+    };
+    rod_.set_state(y_);
+  }
+
+  /// One step of the user's dt. A step that KINSOL cannot solve (the midpoint rule's nonlinear
+  /// system at steps far above the first bending period, e.g. 0.1 s on the viscous cantilever) is
+  /// split into two halves, recursively up to kMaxSplits levels; the iterations of every
+  /// substep are reported. The step fails only when the 2^kMaxSplits substeps fail too. There
+  /// is nothing to split at small dt: the Newton matrix tends to (2/dt) I.
+  StepStatus step(double t, double dt) override { return split_step(t, dt, 0); }
+
+  StepStatus split_step(double t, double dt, int depth) {
+    StepStatus status = single_step(t, dt);
+    if (status.ok || depth >= kMaxSplits) return status;
+    const int spent = status.iterations;
+    StepStatus first = split_step(t, 0.5 * dt, depth + 1);
+    if (!first.ok) {
+      first.iterations += spent;
+      return first;
+    }
+    StepStatus second = split_step(t + 0.5 * dt, 0.5 * dt, depth + 1);
+    second.iterations += spent + first.iterations;
+    return second;
+  }
+
+  StepStatus single_step(double t, double dt) {
+    if (!(dt > 0.0) || !std::isfinite(t + dt))
+      return StepStatus::failed("implicit-midpoint-collocation: dt must be > 0");
+    h_ = t + 0.5 * dt;
+    a_ = 2.0 / dt;
+    const bool continues =
+        history_ > 0 && std::abs(t - t_) <= 1e-12 * std::max(1.0, std::abs(t));
+    if (!continues) history_ = 0;
+    // Predictor of the mean rate over the step: the candidate with the smallest scaled
+    // residual among the linear extrapolation of the last two steps' mean rates (at their
+    // midpoints) to this step's midpoint, the last mean rate, the explicit rate f(h, y0) and
+    // no change. (Stiff modes, which the midpoint rule does not damp, flip sign every step at
+    // large dt and spoil the extrapolation there.)
+    double best = residual_norm(z_.setZero());
+    z0_ = z_;
+    auto consider = [&](const auto& candidate) {
+      trial_ = candidate;
+      const double r = residual_norm(trial_);
+      if (r < best) best = r, z0_ = trial_;
+    };
+    if (history_ >= 2) consider((0.5 * dt) * (k1_ + ((dt + dt1_) / (dt1_ + dt2_)) * (k1_ - k2_)));
+    if (history_ >= 1) consider((0.5 * dt) * k1_);
+    rod_.rhs(h_, y_, f_);
+    consider((0.5 * dt) * f_.head(n_));
+    z_ = z0_;
+    ko_.u_scale = w_.cwiseInverse() * a_;
+
+    if (cache_valid_ && ++age_ > max_age_) cache_valid_ = false;
+    ko_.max_setup_calls = max_setup_calls_;
+    KinsolStats s = solve();
+    long iterations = s.nonlinear_iterations;
+    // Fallbacks (large steps): exact Newton with full steps (a fresh Jacobian every
+    // iteration; the line search can stall in a local minimum of |F|), from the predictor and
+    // then from the explicit rate.
+    for (int attempt = 0; attempt < 2 && !s.converged; ++attempt) {
+      z_ = attempt == 0 ? z0_ : Vector((0.5 * dt) * f_.head(n_));
+      cache_valid_ = false;
+      ko_.max_setup_calls = 1;
+      ko_.line_search = false;
+      s = solve();
+      ko_.line_search = true;
+      iterations += s.nonlinear_iterations;
+    }
+    if (!s.converged) {
+      rod_.set_state(y_);
+      StepStatus failed = StepStatus::failed(
+          "implicit-midpoint-collocation: KINSOL did not converge in the step from t = " +
+          std::to_string(t) + " s (dt = " + std::to_string(dt) + " s): " + s.flag_name +
+          ", scaled residual " + std::to_string(s.fnorm) +
+          (s.message.empty() ? "" : " (" + s.message + ")"));
+      failed.iterations = static_cast<int>(iterations);
+      history_ = 0;
+      return failed;
+    }
+    if (s.nonlinear_iterations > kSlowSolve) cache_valid_ = false;
+
+    // Ledger powers at the midpoint, then y1 = y0 + 2 z.
+    ym_ = y_.head(n_) + z_;
+    rod_.rhs(h_, ym_, f_);
+    y_.head(n_) += 2.0 * z_;
+    y_[rod_.dissipated_index()] += dt * f_[rod_.dissipated_index()];
+    y_[rod_.work_index()] += dt * f_[rod_.work_index()];
+    rod_.set_state(y_);
+
+    k2_.swap(k1_);
+    k1_ = a_ * z_;  // (y1 - y0) / dt
+    dt2_ = dt1_;
+    dt1_ = dt;
+    history_ = std::min(history_ + 1, 2);
+    t_ = t + dt;
+    StepStatus ok;
+    ok.iterations = static_cast<int>(iterations);
+    return ok;
+  }
+
+  Energy energy() const override {
+    return rod_.energy(y_[rod_.dissipated_index()], y_[rod_.work_index()]);
+  }
+  Vector3 tip_position() const override { return rod_.tip_position(); }
+  double max_det_deviation() const override { return rod_.max_det_deviation(); }
+  std::vector<result::CenterlineSample> centerline() const override { return rod_.centerline(); }
+
+  double max_quaternion_norm_deviation() const override {
+    double worst = 0.0;
+    for (int j = 0; j < n_; j += SemiDiscreteRod::kBlock)
+      worst = std::max(worst,
+                       std::abs(y_.segment<4>(j + SemiDiscreteRod::kQ).norm() - 1.0));
+    return worst;
+  }
+  long jacobian_evaluations() const override { return fresh_jacobians_; }
+
+ private:
+  /// max_i |F_i(z)| / w_i, the norm KINSOL tests.
+  double residual_norm(const Vector& z) {
+    residual_(z, F_);
+    return F_.cwiseQuotient(w_).cwiseAbs().maxCoeff();
+  }
+
+  KinsolStats solve() {
+    jacobian_calls_ = 0;
+    return kinsol_.solve(z_, residual_, jacobian_, ko_);
+  }
+
+  SemiDiscreteRod rod_;
+  KinsolSolver kinsol_;
+  KinsolOptions ko_;
+  KinsolSolver::Residual residual_;
+  KinsolSolver::Jacobian jacobian_;
+  int n_ = 0;
+  Vector y_;           ///< state at t_ (nodes, D, W)
+  Vector ym_, z_, z0_, f_;  ///< midpoint, half-step increment (and its prediction), f
+  Vector trial_, F_;        ///< predictor candidates and their residual
+  Vector w_;           ///< rate scale per node row, omega_1 tolerance_scale()
+  // Step in progress and predictor history (mean rates of the last two steps).
+  double h_ = 0.0, a_ = 1.0, t_ = 0.0, dt1_ = 0.0, dt2_ = 0.0;
+  int history_ = 0;
+  Vector k1_, k2_;
+  // Jacobian kept across steps.
+  Vector cached_;
+  double cached_a_ = 0.0;
+  bool cache_valid_ = false;
+  int age_ = 0, jacobian_calls_ = 0, max_age_ = 50, max_setup_calls_ = 10;
+  long fresh_jacobians_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<ImplicitMidpointCollocationStepper> make_implicit_midpoint_collocation(
+    const DynamicProblem& problem, const ImplicitMidpointCollocationOptions& options,
+    std::span<const SE3> g0) {
+  return std::make_unique<ImplicitMidpointCollocation>(problem, options, g0);
+}
+
+std::unique_ptr<ImplicitMidpointCollocationStepper> make_implicit_midpoint_collocation(
+    const DynamicProblem& problem, const ImplicitMidpointCollocationOptions& options,
+    const RestState& initial) {
+  return std::make_unique<ImplicitMidpointCollocation>(problem, options, initial.g);
+}
+
+}  // namespace rodlab::solvers::dynamics

@@ -1,0 +1,60 @@
+#pragma once
+// `ida`: the dynamics reference. Method of lines in s, integrated in time by SUNDIALS IDA
+// (variable-order BDF, error control at rtol = atol = 1e-10 by default) with the KLU sparse
+// linear solver (common/ida_solver.hpp).
+//
+// Semi-discretisation (semi_discrete_rod.hpp, shared with implicit-midpoint-collocation): the
+// time-continuous limit of `variational` (variational.hpp), so the two agree at equal N as
+// dt -> 0. Unknowns per node j >= 1, 13 of them: the position p_j (world), a quaternion q_j and
+// the body velocity eta_j, then the two ledger unknowns. The system is an ODE written as IDA's
+// residual F = y' - f(t, y); the Newton matrix cj I - df/dy is block tridiagonal in the nodes
+// (13 x 13 blocks) plus two dense ledger rows, filled by finite differences with three node
+// colours (j mod 3), then factorised by KLU.
+//
+// Energy ledger: kinetic, strain and gravity energies come from energy.hpp; `dissipated`
+// (viscous power sum_j ds xi_dot^T V xi_dot, drag power -w_j drag . eta_j) and `work_in` (tip
+// wrench, distributed wrench, actuator and cable-entry power) are two extra differential
+// unknowns D' = P_diss(y), W' = P_in(y) integrated by IDA under the same error control (plain
+// IDA has no quadrature facility; that is IDAS). Their rows of the Newton matrix are exact
+// finite differences too (the powers are sums of per-segment and per-node terms, which the
+// colouring keeps apart). The semi-discrete balance T + U + P + D - W = const is exact, so
+// Energy::total() drifts only by the integration error.
+//
+// Absolute tolerances per component (atol is the option; SemiDiscreteRod::tolerance_scale()):
+//   position [m]: atol;  quaternion [1]: atol;
+//   angular velocity [rad/s]: atol * omega_1;  linear velocity [m/s]: atol * L * omega_1;
+//   dissipated and work_in [J]: atol * E_bend,
+// with omega_1 = 2 pi f_1 the first (Euler-Bernoulli, free tip) bending frequency and
+// E_bend = 1/2 EI (pi / 2L)^2 L the strain energy of a quarter-circle bend (the characteristic
+// velocity and energy of the rod's gross motion).
+//
+// Consistent initial conditions: the run starts at rest from the given node poses, so y'0 =
+// f(0, y0) is computed directly (p' = q' = 0, eta' = M^-1 (...), no IDACalcIC).
+// Kirchhoff rods are not supported yet (std::invalid_argument).
+#include <memory>
+#include <span>
+
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/stepper.hpp"
+
+namespace rodlab::solvers::dynamics {
+
+struct IdaOptions {
+  int nodes = 20;
+  double rtol = 1e-10, atol = 1e-10;  ///< IDA's tolerances (atol scaled per component, above)
+  int max_steps = 100000;             ///< internal IDA steps per step() call
+};
+
+/// Starts at rest from the node poses g0 (base first, options.nodes of them). step(t, dt)
+/// integrates to t + dt with the stop time there (a failed IDASolve is a failed StepStatus with
+/// IDA's flag name and time; `iterations` counts IDA's Newton iterations in the step). A call
+/// whose t is not the time reached restarts IDA there from the current state.
+std::unique_ptr<Stepper> make_ida(const DynamicProblem& problem, const IdaOptions& options,
+                                  std::span<const SE3> g0);
+
+/// The same from a RestState (the form of make_variational): only the poses are used, since
+/// the segment strains are log(g_j^-1 g_(j+1)) / ds of the poses.
+std::unique_ptr<Stepper> make_ida(const DynamicProblem& problem, const IdaOptions& options,
+                                  const RestState& initial);
+
+}  // namespace rodlab::solvers::dynamics

@@ -1,0 +1,127 @@
+#pragma once
+// The semi-discrete rod shared by `ida` (ida_reference.hpp) and `implicit-midpoint-collocation`
+// (implicit_midpoint_collocation.hpp): the method-of-lines ODE y' = f(t, y) on the staggered grid
+// of `variational` (variational.hpp), so at equal N these schemes differ only in time.
+//
+// Grid: nodes j = 0..N-1 at s_j = j ds, ds = L / (N - 1); node 0 is the fixed base (g_0 = base,
+// eta_0 = 0). State y, 13 unknowns per node j >= 1 (block j - 1): the position p_j (world), a
+// quaternion q_j = [w x y z] (normalised when R_j is formed; its ODE is linear and
+// skew-symmetric in q, so |q| is a quadratic invariant) and the body velocity
+// eta_j = [psi; kappa]; then two ledger unknowns, D (dissipated) and W (work_in).
+// On segment j (nodes j, j + 1):
+//   G = g_j^-1 g_(j+1),  xi_j = log(G) / ds                                   (3.38), t-continuous
+//   xi_dot_j = dexp^-1_{-ds xi_j} (eta_(j+1) - Ad_{G^-1} eta_j) / ds   (exact d/dt of xi_j)
+//   sigma_j = K (xi_j - xi*) + V xi_dot_j + sum_k F_k c_k(xi_j)         (3.10) at the midpoint
+//   lambda_j = dexp^-T_{ds xi_j} sigma_j   (node j's frame; Ad_G^T lambda_j in node j + 1's) (3.40)
+// and at the nodes, with trapezoid weights w_j = ds (w_(N-1) = ds / 2):
+//   F_j = lambda_j - Ad_{G_(j-1)}^T lambda_(j-1)   (lambda_(N-1) := W_tip at the tip)    (3.41)
+//   p_dot = R kappa,  q_dot = q (x) [0; psi] / 2,
+//   M eta_dot = ad_eta^T M eta + F_j / w_j + W_bar(R_j, eta_j, t)       (thesis (3.8))
+// plus the entry load of a cable pulled from outside at the node nearest its entry point.
+// The ledger rows: D' = sum_j ds xi_dot_j^T V xi_dot_j - sum_j w_j drag_j . eta_j (viscous and
+// drag power), W' = tip, distributed, actuator and cable-entry power. f does not depend on D, W.
+// The semi-discrete balance T + U + P + D - W = const is exact (energy.hpp formulas).
+//
+// df/dy is block tridiagonal in the nodes (13 x 13 blocks) plus the two dense ledger rows; it is
+// filled by finite differences with three node colours (j mod 3): every node row sees at most
+// one perturbed node, and the ledger powers are sums of per-segment and per-node terms, of which
+// a perturbed node k moves segments k - 1, k and node k only.
+//
+// Characteristic scales per component (scale(), the finite-difference increments' floor):
+// position L, quaternion 1, angular velocity omega_1 [rad/s], linear velocity L omega_1 [m/s],
+// D and W E_bend [J], with omega_1 = 2 pi f_1 the first (Euler-Bernoulli, free tip) bending
+// frequency and E_bend = 1/2 EI (pi / 2L)^2 L the strain energy of a quarter-circle bend (the
+// characteristic velocity and energy of the rod's gross motion). tolerance_scale() is the same
+// with positions absolute (1 m): ida's absolute tolerances are atol * tolerance_scale(), and the
+// collocation scheme scales its residual and unknowns by it.
+//
+// Kirchhoff rods are not supported (std::invalid_argument): the constraint nu = nu* would need
+// algebraic constraint forces (an index-3 DAE), which this ODE does not carry.
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "rodlab/result/static_result.hpp"
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/energy.hpp"
+
+namespace rodlab::solvers::dynamics {
+
+class SemiDiscreteRod {
+ public:
+  using Vector = Eigen::VectorXd;
+  using ConstRef = Eigen::Ref<const Vector>;
+  using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
+
+  /// Unknowns per node: p (3), q = [w x y z] (4), eta = [psi; kappa] (6).
+  static constexpr int kBlock = 13;
+  static constexpr int kP = 0, kQ = 3, kEta = 7;
+
+  /// `who` names the scheme in error messages. Throws std::invalid_argument for nodes < 3 and
+  /// Kirchhoff rods. The problem must outlive this object.
+  SemiDiscreteRod(const DynamicProblem& problem, int nodes, const std::string& who);
+
+  const DynamicProblem& problem() const { return P_; }
+  int nodes() const { return n_; }
+  double ds() const { return ds_; }
+  /// 13 (N - 1) node unknowns, then D and W.
+  int size() const { return dim_; }
+  int node_size() const { return iD_; }
+  int dissipated_index() const { return iD_; }
+  int work_index() const { return iW_; }
+  /// Characteristic scale per component (see above), size().
+  const Vector& scale() const { return scale_; }
+  /// scale() with 1 m for the positions (tolerances on positions are absolute).
+  Vector tolerance_scale() const;
+  /// omega_1 [rad/s], the characteristic rate of the gross motion.
+  double omega1() const { return omega1_; }
+
+  /// y at rest at the node poses g0 (base first, nodes() of them), D = W = 0. Throws
+  /// std::invalid_argument for a wrong count.
+  Vector rest_state(std::span<const SE3> g0) const;
+
+  /// f(t, y) of y' = f(t, y): y and f of size() (node_size() is enough for y: D and W are not
+  /// read), f of size() (ledger rows included) or node_size() (node rows only).
+  void rhs(double t, const ConstRef& y, Eigen::Ref<Vector> f) const;
+
+  /// Structural pattern of a Newton matrix a I - b df/dy: block tridiagonal node blocks and, with
+  /// the ledger, the two ledger rows over every node column and the ledger diagonal.
+  SparseMatrix pattern(bool with_ledger) const;
+
+  /// J = a I - b df/dy at (t, y) by coloured finite differences, on a matrix with the pattern of
+  /// pattern(J.rows() == size()) (values overwritten; y of size() or node_size()).
+  void newton_matrix(double t, const ConstRef& y, double a, double b, SparseMatrix& J) const;
+
+  /// Poses, velocities and strains of y for the reports below (y: size() or node_size()).
+  void set_state(const ConstRef& y) const;
+  /// Energies of the state last set; dissipated and work_in as given.
+  Energy energy(double dissipated, double work_in) const;
+  Vector3 tip_position() const { return g_.back().translation(); }
+  double max_det_deviation() const;
+  std::vector<result::CenterlineSample> centerline() const;
+
+ private:
+  void unpack_nodes(const double* y) const;
+  /// f of the node rows into f (node_size()); the ledger powers into diss, work.
+  void evaluate(double t, const double* y, double* f, double& diss, double& work) const;
+
+  const DynamicProblem& P_;
+  int n_;
+  double ds_ = 0.0, omega1_ = 0.0;
+  int dim_ = 0, iD_ = 0, iW_ = 0;
+  Vector6 M_, V_;
+  Vector scale_;
+  std::vector<DynamicProblem::EntryNode> entries_;
+  // Work arrays of evaluate() (mutable: the reports unpack the current state).
+  mutable std::vector<SE3> g_;
+  mutable std::vector<Vector6> eta_, xi_, xi_dot_, lambda_, moved_;
+  mutable std::vector<double> seg_diss_, seg_work_, node_diss_, node_work_;
+  // Finite-difference work arrays.
+  mutable Vector f0_, f1_, ytmp_;
+  mutable std::vector<double> seg0_diss_, seg0_work_, node0_diss_, node0_work_;
+};
+
+}  // namespace rodlab::solvers::dynamics

@@ -1,0 +1,41 @@
+#pragma once
+// The shooting stepper shared by `implicit-midpoint` and `bdf-alpha`: a time-difference rule
+// (time_rule.hpp) in time, explicit Euler RKMK in space, single shooting (thesis Algorithm 2,
+// (3.46)-(3.54); Till, Aloi & Rucker 2019); docs/dynamics.md.
+//
+// Each step solves, for the unknown profiles at t_u = t + theta dt with x_dot = c x + h
+// (x = xi, eta), the BVP in s
+//   g'      = g hat(xi)
+//   Lambda' = M (c eta + h_eta) - ad_eta^T M eta + ad_xi^T Lambda - W_bar(t_u)   (3.51)
+//   eta'    = (c xi + h_xi) - ad_xi eta                                           (3.52)
+//   Lambda  = K (xi - xi*) + V (c xi + h_xi) + sum_k F_k(t_u) c_k(xi)
+//           = Kt (xi - xi_ref) + sum_k F_k c_k(xi),  Kt = K + c V,
+//             xi_ref = Kt^-1 (K xi* - V h_xi)                      (3.10), solved for xi
+// from g(0) = base, eta(0) = 0 and the unknown Lambda(0), to the tip condition
+// Lambda(L) = W_tip(t_u). The rule then advances the state (xi, eta at the nodes) from the
+// converged profiles; poses follow from xi by the same spatial integration. Lambda, not xi (the
+// thesis), is shot from the base, as in the statics: actuators and Kirchhoff constraint forces
+// (nu held at nu*, Lambda's force part is then the constraint force) need no special treatment.
+// Newton on Lambda(0): finite-difference Jacobian, Broyden updates, reused across steps, with a
+// linear predictor from the last two steps.
+#include <memory>
+
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/stepper.hpp"
+#include "rodlab/solvers/dynamics/time_rule.hpp"
+
+namespace rodlab::solvers::dynamics {
+
+struct ShootingOptions {
+  int nodes = 20;
+  double tol = 1e-10;       ///< on the tip residual, wrenches scaled by E I / L and E I / L^2
+  int max_iterations = 50;  ///< shooting integrations per step, Jacobian columns included
+};
+
+/// Starts at rest from `initial` (options.nodes nodes).
+std::unique_ptr<Stepper> make_shooting_stepper(const DynamicProblem& problem,
+                                               const ShootingOptions& options,
+                                               const RestState& initial,
+                                               std::unique_ptr<TimeRule> rule);
+
+}  // namespace rodlab::solvers::dynamics
