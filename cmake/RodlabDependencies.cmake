@@ -51,3 +51,13 @@ if(RODLAB_BUILD_BENCH)
   find_package(benchmark QUIET)
   rodlab_require_found(benchmark_FOUND "Google Benchmark" libbenchmark-dev)
 endif()
+
+# Optional: MPI splits `rodlab study` across ranks (Debian's OpenMPI: libopenmpi-dev and
+# openmpi-bin; scripts/bootstrap.sh installs them). Without it rodlab builds as usual and
+# `rodlab study` under mpirun stops with a message saying so.
+find_package(MPI QUIET COMPONENTS CXX)
+if(MPI_CXX_FOUND)
+  message(STATUS "rodlab: MPI found (${MPI_CXX_LIBRARY_VERSION_STRING}); rodlab study can run across ranks")
+else()
+  message(STATUS "rodlab: MPI not found (install libopenmpi-dev openmpi-bin); rodlab study runs in one process")
+endif()

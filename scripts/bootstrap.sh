@@ -15,6 +15,8 @@ packages=(
   libyaml-cpp-dev                  # scene files
   libbenchmark-dev                 # benchmarks
   nlohmann-json3-dev               # result files
+  python3-matplotlib python3-numpy # figures of the validation report (validation/make_figures.py)
+  libopenmpi-dev openmpi-bin       # MPI for rodlab study across ranks (optional at build time)
 )
 
 missing=()

@@ -8,11 +8,6 @@
 
 namespace rodlab::cli {
 
-/// The studies (convergence, work-precision, stability, recommend) and their reports.
-inline constexpr std::string_view kStudiesArrive = "the validation issue (#5)";
-
-/// The workspace sweep (`rodlab workspace`), built on the statics solvers.
-
 /// Throws NotAvailable("not available yet; it arrives with <arrives>") unless `arrives` is
 /// empty. main.cpp prefixes "rodlab <command>: ".
 void require_available(std::string_view arrives);

@@ -1,37 +1,61 @@
 // rodlab study KIND SCENE [options]: convergence, work-precision and stability studies, and
-// the scheme recommendation built on them.
+// the scheme recommendation built on them (docs/studies.md). This file reads and checks the
+// command line and the scene (nothing runs and nothing is written until everything is
+// valid), then hands over to the study functions (study_*.hpp) and writes their outputs.
 #include <array>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "availability.hpp"
 #include "command.hpp"
 #include "common_options.hpp"
+#include "errors.hpp"
+#include "exit_status.hpp"
 #include "format.hpp"
+#include "study_convergence.hpp"
+#include "study_executor.hpp"
+#include "study_processes.hpp"
+#include "study_stability.hpp"
+#include "study_work_precision.hpp"
 
 namespace rodlab::cli {
 namespace {
 
 using solvers::Problem;
+using study::Json;
 
 constexpr std::array<std::string_view, 2> kPositionals{"KIND", "SCENE"};
 constexpr std::array<std::string_view, 4> kKinds{"convergence", "work-precision", "stability",
                                                  "recommend"};
 constexpr std::array<std::string_view, 3> kReferences{"kinsol", "ida", "chebyshev"};
-constexpr std::array<OptionSpec, 9> kOptions{
+constexpr OptionSpec kStudyTolOption{
+    "--tol", "X",
+    "recommend: the tip error to reach [m]; other studies: the solver tolerance "
+    "(default: solver.tol)"};
+constexpr std::array<OptionSpec, 12> kOptions{
     OptionSpec{"--schemes", "A,B,...",
-               "schemes to compare, comma-separated (one problem class); default: all"},
+               "schemes to compare, comma-separated (one problem class); default: all available"},
     OptionSpec{"--nodes", "N1,N2,...", "node counts, comma-separated integers >= 2"},
     OptionSpec{"--dt", "X1,X2,...", "time steps > 0, comma-separated (dynamics studies)"},
+    OptionSpec{"--t-end", "T", "length of the dynamics runs [s]; default: dynamics.t_end"},
     OptionSpec{"--reference", "NAME", "reference solution: kinsol, ida or chebyshev"},
-    kTolOption,
-    OptionSpec{"--budget-ms", "X", "time budget per run in milliseconds, > 0"},
-    OptionSpec{"--jobs", "N", "runs in parallel, integer >= 1"},
-    OptionSpec{"--out", "DIR", "directory for the study's data and report (created if missing)"},
+    kStudyTolOption,
+    OptionSpec{"--budget-ms", "X", "recommend: time budget per run in milliseconds, > 0"},
+    OptionSpec{"--repeats", "R", "work-precision, recommend: timed repeats per run (default 5)"},
+    OptionSpec{"--moduli", "E1,E2,...", "stability: Young's moduli [Pa] (default 1e4,1e6,1e8)"},
+    OptionSpec{"--jobs", "N", "runs in parallel on this machine, integer >= 1 (default 1)"},
+    OptionSpec{"--out", "DIR", "directory for the study's data (default out/study-KIND)"},
     kSetOption};
 
-/// The problem class of the study from its schemes, its reference, or its kind.
-void check_problem_class(OptionReader& reader, const std::string& kind) {
+constexpr int kDefaultRepeats = 5;
+
+/// The problem class of the study from its schemes, its reference, or its kind; nullopt when
+/// nothing decides it (then statics).
+std::optional<Problem> check_problem_class(OptionReader& reader, const std::string& kind) {
   std::optional<Problem> problem;
   std::string decided_by;
   if (kind == "stability") {
@@ -62,7 +86,9 @@ void check_problem_class(OptionReader& reader, const std::string& kind) {
   }
   if (const auto reference = reader.choice("--reference", kReferences)) {
     const Problem p = solvers::find_scheme(*reference)->problem;
-    if (problem && *problem != p)
+    if (kind == "stability")
+      reader.problem("--reference: a stability study compares no solutions");
+    else if (problem && *problem != p)
       reader.problem("--reference: '" + *reference + "' is a " +
                      std::string(solvers::to_string(p)) + " reference but " + decided_by +
                      " needs a " + std::string(solvers::to_string(*problem)) + " one");
@@ -71,9 +97,160 @@ void check_problem_class(OptionReader& reader, const std::string& kind) {
       decided_by = "--reference " + *reference;
     }
   }
-  if (reader.arguments().has("--dt") && problem == Problem::statics)
-    reader.problem("--dt: only dynamics studies step in time, and " + decided_by +
+  const bool has_dt = reader.arguments().has("--dt");
+  const bool has_t_end = reader.arguments().has("--t-end");
+  if ((has_dt || has_t_end) && problem == Problem::statics)
+    reader.problem(std::string(has_dt ? "--dt" : "--t-end") +
+                   ": only dynamics studies step in time, and " + decided_by +
                    " makes this a statics study");
+  if (!problem && (has_dt || has_t_end)) problem = Problem::dynamics;
+  return problem;
+}
+
+/// Every option that only some kinds take.
+void check_kind_options(OptionReader& reader, const std::string& kind) {
+  const auto& a = reader.arguments();
+  if (a.has("--budget-ms") && kind != "recommend")
+    reader.problem("--budget-ms: only `rodlab study recommend` takes a time budget");
+  if (a.has("--repeats") && kind != "work-precision" && kind != "recommend")
+    reader.problem("--repeats: only work-precision and recommend time their runs");
+  if (a.has("--moduli") && kind != "stability")
+    reader.problem("--moduli: only `rodlab study stability` varies Young's modulus");
+  if (kind == "recommend" && !a.has("--tol"))
+    reader.problem("--tol: `rodlab study recommend` needs the tip error to reach, e.g. --tol 1e-6");
+}
+
+/// The schemes of the study: --schemes (each must be available), else every available one.
+std::vector<solvers::SchemeInfo> chosen_schemes(const OptionReader& reader, Problem problem) {
+  const auto text = reader.text("--schemes");
+  if (!text) return study::available_schemes(problem);
+  std::vector<solvers::SchemeInfo> out;
+  for (const auto& name : split_list(*text)) {
+    const auto scheme = *solvers::find_scheme(name);
+    if (!scheme.arrives.empty())
+      throw NotAvailable("--schemes: '" + name + "' is not available yet; it arrives with " +
+                         std::string(scheme.arrives));
+    bool seen = false;
+    for (const auto& s : out) seen = seen || s.name == scheme.name;
+    if (!seen) out.push_back(scheme);
+  }
+  return out;
+}
+
+std::string describe(const study::Candidate& c) {
+  std::string out = c.scheme + ", N = " + std::to_string(c.nodes);
+  if (c.dt) out += ", dt = " + format_number(*c.dt) + " s";
+  out += ": tip error " + format_number(c.error) + " m, median wall time " +
+         format_number(c.wall_time_s * 1e3) + " ms (" + std::to_string(c.repeats) +
+         (c.repeats == 1 ? " run)" : " runs)");
+  return out;
+}
+
+Json candidate_json(const std::optional<study::Candidate>& c) {
+  if (!c) return nullptr;
+  return {{"scheme", c->scheme},
+          {"nodes", c->nodes},
+          {"dt", c->dt ? Json(*c->dt) : Json(nullptr)},
+          {"error", c->error},
+          {"wall_time_s", c->wall_time_s},
+          {"repeats", c->repeats}};
+}
+
+/// The work-precision study.json in DIR when it was measured with the same settings.
+std::optional<Json> reusable_measurements(const std::string& dir, const Json& settings) {
+  const auto path = std::filesystem::path(dir) / "study.json";
+  std::ifstream in(path);
+  if (!in) return std::nullopt;
+  try {
+    const Json j = Json::parse(in);
+    if (j.value("kind", "") == "work-precision" && j.value("settings", Json()) == settings)
+      return j;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+int run_sweep_kind(const std::string& kind, const study::Settings& settings,
+                   const study::Executor& executor, const std::string& dir,
+                   std::optional<double> target, std::optional<double> budget_ms) {
+  const bool root = executor.processes->root();
+  std::optional<Json> measured;
+  if (kind == "recommend") measured = reusable_measurements(dir, study::settings_json(settings));
+  Json wp;
+  int status = kSolved;
+  if (!measured) {
+    if (executor.jobs > 1 && kind != "convergence" && root)
+      std::cerr << "rodlab study: note: timings are measured with " << executor.jobs
+                << " runs in parallel (--jobs); use --jobs 1 for uncontended timings\n";
+    const auto sweep = study::run_sweep(settings, executor);
+    if (!root) return kSolved;
+    std::cout << "reference: " << sweep.reference.value("description", "") << "\n\n";
+    if (kind == "convergence") {
+      study::write_output(dir, "convergence.csv", study::convergence_csv(sweep));
+      study::write_output(dir, "convergence_orders.csv", study::orders_csv(sweep));
+      study::write_output(dir, "study.json",
+                          study::sweep_json(sweep, settings, "convergence").dump(2) + "\n");
+      std::cout << study::sweep_table(sweep, false) << '\n' << study::orders_table(sweep);
+    } else {
+      const auto pareto = study::pareto_front(sweep);
+      wp = study::work_precision_json(sweep, pareto, settings);
+      study::write_output(dir, "work_precision.csv", study::work_precision_csv(sweep, pareto));
+      study::write_output(dir, "study.json", wp.dump(2) + "\n");
+      if (kind == "work-precision") {
+        std::cout << study::sweep_table(sweep, true) << "\nPareto front (error against median "
+                                                        "wall time):\n";
+        for (std::size_t i = 0; i < sweep.rows.size(); ++i)
+          if (pareto[i])
+            std::cout << "  " << sweep.rows[i].spec.scheme << " N = " << sweep.rows[i].spec.nodes
+                      << (settings.problem == Problem::dynamics
+                              ? " dt = " + format_number(sweep.rows[i].run.dt)
+                              : std::string())
+                      << ": " << format_number(sweep.rows[i].error) << " m in "
+                      << format_number(sweep.rows[i].run.wall_time_s) << " s\n";
+      }
+    }
+    if (sweep.failed > 0) {
+      std::cout << '\n' << sweep.failed << " run(s) did not converge (see the reason column)\n";
+      status = kNotConverged;
+    }
+    std::cout << "\nwritten: " << dir << '\n';
+    if (kind != "recommend") return status;
+  } else {
+    if (!root) return kSolved;
+    wp = *measured;
+    std::cout << "reusing the measurements in " << dir << "/study.json (same scene and settings)\n";
+  }
+
+  const auto rec = study::recommend(wp["rows"], *target, budget_ms);
+  const std::string budget_text =
+      budget_ms ? " within " + format_number(*budget_ms) + " ms per run" : std::string();
+  std::cout << "\nrecommendation for a tip error <= " << format_number(*target) << " m"
+            << budget_text << " (" << rec.candidates << " measured runs on this machine):\n";
+  if (rec.best) {
+    std::cout << "  " << describe(*rec.best) << '\n';
+  } else {
+    std::cout << "  nothing reaches " << format_number(*target) << " m" << budget_text << '\n';
+    if (rec.fastest_meeting_tol)
+      std::cout << "  fastest that meets the tolerance: " << describe(*rec.fastest_meeting_tol)
+                << '\n';
+    else if (rec.most_accurate)
+      std::cout << "  most accurate measured: " << describe(*rec.most_accurate) << '\n';
+    std::cout << "  (refine with --nodes / --dt, or relax --tol / --budget-ms)\n";
+  }
+  const Json out{{"schema", "rodlab.study/1"},
+                 {"kind", "recommend"},
+                 {"scene", settings.scene.name},
+                 {"command_line", settings.command_line},
+                 {"tol", *target},
+                 {"budget_ms", budget_ms ? Json(*budget_ms) : Json(nullptr)},
+                 {"measurements", measured ? "reused" : "measured"},
+                 {"candidates", rec.candidates},
+                 {"recommendation", candidate_json(rec.best)},
+                 {"fastest_meeting_tol", candidate_json(rec.fastest_meeting_tol)},
+                 {"most_accurate", candidate_json(rec.most_accurate)}};
+  study::write_output(dir, "recommendation.json", out.dump(2) + "\n");
+  std::cout << "written: " << dir << "/recommendation.json\n";
+  return rec.best ? status : kNotConverged;
 }
 
 int run(const Invocation& inv) {
@@ -88,18 +265,83 @@ int run(const Invocation& inv) {
   SolveOptions options;
   options.scene_path = inv.args.positionals().back();
   options.overrides = read_overrides(reader);
-  options.tol = reader.positive(kTolOption.name);
-  reader.integers("--nodes", 2);
-  reader.positives("--dt");
-  reader.positive("--budget-ms");
-  reader.integer("--jobs", 1);
-  read_out_dir(reader);
-  if (kind_ok) check_problem_class(reader, kind);
+  const auto tol = reader.positive("--tol");
+  const auto nodes = reader.integers("--nodes", 2);
+  const auto dts = reader.positives("--dt");
+  const auto t_end = reader.positive("--t-end");
+  const auto budget = reader.positive("--budget-ms");
+  const auto repeats = reader.integer("--repeats", 1);
+  const auto moduli = reader.positives("--moduli");
+  const auto jobs = reader.integer("--jobs", 1);
+  const auto out_dir = read_out_dir(reader);
+  std::optional<Problem> problem;
+  if (kind_ok) {
+    problem = check_problem_class(reader, kind);
+    check_kind_options(reader, kind);
+  }
+  if (problem == Problem::dynamics && nodes)
+    for (const int n : *nodes)
+      if (n < 3) {
+        reader.problem("--nodes: the dynamics schemes need N >= 3 (got " + std::to_string(n) +
+                       ")");
+        break;
+      }
   reader.finish();
-  static_cast<void>(load_checked_scene(options));
-  require_available(kStudiesArrive);
-  // The studies themselves arrive with kStudiesArrive.
-  throw std::logic_error("the studies are marked available but not linked");
+  const scene::Scene scene = load_checked_scene(options);
+
+  study::Settings settings;
+  settings.scene_path = options.scene_path;
+  for (const auto& text : inv.args.values(kSetOption.name)) settings.overrides.push_back(text);
+  settings.scene = scene;
+  settings.problem = problem.value_or(Problem::statics);
+  settings.schemes = chosen_schemes(reader, settings.problem);
+  if (const auto ref = inv.args.value("--reference"); ref && !study::scheme_available(*ref))
+    throw NotAvailable("--reference: '" + *ref + "' is not available yet; it arrives with " +
+                       std::string(solvers::find_scheme(*ref)->arrives));
+  settings.reference = inv.args.value("--reference");
+  if (settings.schemes.empty())
+    throw UsageError("--schemes: no available " +
+                     std::string(solvers::to_string(settings.problem)) + " scheme to study");
+  if (nodes) settings.nodes = *nodes;
+  if (dts) settings.dts = *dts;
+  if (moduli) settings.moduli = *moduli;
+  const bool recommend = kind == "recommend";
+  settings.tol = (!recommend && tol) ? *tol : scene.solver.tol;
+  settings.repeats = (kind == "work-precision" || recommend) ? repeats.value_or(kDefaultRepeats) : 1;
+  settings.command_line = inv.command_line;
+  if (settings.problem == Problem::dynamics) {
+    const auto scene_t_end = scene.dynamics ? scene.dynamics->t_end : std::nullopt;
+    if (t_end)
+      settings.t_end = *t_end;
+    else if (scene_t_end)
+      settings.t_end = *scene_t_end;
+    else if (kind == "stability")
+      settings.t_end = 1.0;
+    else
+      throw UsageError("--t-end: no run length; give --t-end T or set dynamics.t_end in " +
+                       options.scene_path);
+    for (const double dt : settings.dts)
+      if (dt > settings.t_end)
+        throw UsageError("--dt: the time step " + format_number(dt) +
+                         " s exceeds the run length " + format_number(settings.t_end) + " s");
+  }
+  const std::string dir =
+      out_dir ? out_dir->string()
+              : "out/study-" + std::string(recommend ? "work-precision" : kind);
+
+  // Everything is checked: from here on the study runs (and MPI, if launched by mpirun).
+  study::Processes processes;
+  const study::Executor executor{jobs.value_or(1), &processes};
+  if (kind != "stability")
+    return run_sweep_kind(kind, settings, executor, dir, tol, budget);
+
+  const auto stab = study::run_stability(settings, executor);
+  if (!processes.root()) return kSolved;
+  study::write_output(dir, "stability_explicit.csv", study::explicit_csv(stab));
+  study::write_output(dir, "stability_implicit.csv", study::implicit_csv(stab));
+  study::write_output(dir, "study.json", study::stability_json(stab, settings).dump(2) + "\n");
+  std::cout << study::stability_table(stab) << "\nwritten: " << dir << '\n';
+  return kSolved;
 }
 
 }  // namespace
@@ -110,15 +352,25 @@ const Command& study_command() {
       "KIND SCENE [options]",
       "convergence, work-precision, stability studies; scheme recommendation",
       "KIND is one of:\n"
-      "  convergence      error against the reference as the nodes (or dt) are refined; observed "
-      "order\n"
-      "  work-precision   error against wall time for each scheme\n"
-      "  stability        largest stable time step of each dynamics scheme\n"
-      "  recommend        the fastest scheme that meets --tol within --budget-ms\n"
-      "The options and the scene are checked before anything runs.\n"
+      "  convergence      error against the reference as the nodes (or dt) are refined; observed\n"
+      "                   order (DIR/convergence.csv, convergence_orders.csv, study.json)\n"
+      "  work-precision   error against median wall time for each scheme and resolution, and\n"
+      "                   the Pareto front (DIR/work_precision.csv, study.json)\n"
+      "  stability        largest stable time step of the explicit scheme against E and N;\n"
+      "                   where the implicit schemes fail, below and above dt auto\n"
+      "                   (DIR/stability_explicit.csv, stability_implicit.csv, study.json)\n"
+      "  recommend        the fastest measured scheme and resolution that meets --tol (a tip\n"
+      "                   error in m) within --budget-ms; reuses DIR's work-precision data when\n"
+      "                   it was measured with the same settings (DIR/recommendation.json)\n"
+      "A study is a statics study unless its schemes, its reference, --dt or --t-end make it a\n"
+      "dynamics one (stability always is). Without --schemes, every available scheme of the\n"
+      "class takes part. The options and the scene are checked before anything runs.\n"
+      "--jobs N runs N cases at once; under `mpirun -n K` the cases are split across the ranks\n"
+      "and rank 0 writes the merged outputs (docs/studies.md).\n"
       "\n"
-      "Exit status: 0 the study ran; 1 some runs failed (the report says which); 2 bad input\n"
-      "or usage (nothing is written).\n",
+      "Exit status: 0 the study ran; 1 some runs failed (the report says which), or recommend\n"
+      "found nothing that meets --tol within the budget; 2 bad input or usage (nothing is\n"
+      "written).\n",
       kPositionals,
       kOptions,
       &run};

@@ -1,6 +1,8 @@
-// rodlab validate [--quick|--full] [--out DIR] [--scenes DIR]: the validation suite and its
-// report.
+// rodlab validate [--quick|--full] [--out DIR] [--scenes DIR] [--only FAMILY,...] [--no-figures]:
+// the validation suite and its report (docs/validation.md).
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -13,6 +15,7 @@
 #include "exit_status.hpp"
 #include "format.hpp"
 #include "validation_checks.hpp"
+#include "validation_figures.hpp"
 #include "validation_report.hpp"
 
 namespace rodlab::cli {
@@ -34,12 +37,22 @@ std::string indented(const std::string& text, const std::string& indent) {
   return out;
 }
 
+std::string family_names() {
+  std::vector<std::string> names;
+  for (const auto& f : check_families()) names.emplace_back(f.name);
+  return join(names);
+}
+
 constexpr std::string_view kDefaultOut = "out/validation";
-constexpr std::array<OptionSpec, 4> kOptions{
-    OptionSpec{"--quick", "", "the quick suite (default)"},
+constexpr std::array<OptionSpec, 6> kOptions{
+    OptionSpec{"--quick", "", "the quick suite (default; at most 5 minutes on 2 cores)"},
     OptionSpec{"--full", "", "the full suite, including the slow checks"},
-    OptionSpec{"--out", "DIR", "write DIR/report.json and DIR/report.md (default: out/validation)"},
-    OptionSpec{"--scenes", "DIR", "the scenes to check (default: the source tree's scenes/)"}};
+    OptionSpec{"--out", "DIR",
+               "write the report into DIR: index.html, report.json, report.md, data/, figures/ "
+               "(default: out/validation)"},
+    OptionSpec{"--scenes", "DIR", "the scenes to check (default: the source tree's scenes/)"},
+    OptionSpec{"--only", "FAMILY,...", "run only these check families (default: all)"},
+    OptionSpec{"--no-figures", "", "do not run validation/make_figures.py"}};
 
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);
@@ -52,17 +65,50 @@ int run(const Invocation& inv) {
     reader.problem("--scenes: " + scenes.string() + " is not a directory");
   else if (scene_files(scenes).empty())
     reader.problem("--scenes: no *.yaml scene in " + scenes.string());
+  std::vector<std::string> only;
+  if (const auto names = reader.names("--only")) {
+    for (const auto& n : *names) {
+      const auto families = check_families();
+      if (std::none_of(families.begin(), families.end(),
+                       [&](const CheckFamily& f) { return f.name == n; }))
+        reader.problem("--only: no check family '" + n + "' (families: " + family_names() + ")");
+    }
+    only = *names;
+  }
   reader.finish();
 
   ValidationReport report;
   report.mode = reader.flag("--full") ? "full" : "quick";
   report.scenes_dir = scenes.string();
   report.provenance = collect_provenance(RODLAB_SOURCE_DIR, inv.command_line);
-  report.checks = run_checks(ValidationContext{scenes, report.mode == "full"});
+  for (const auto& f : check_families())
+    if (only.empty() || std::find(only.begin(), only.end(), f.name) != only.end())
+      report.families.push_back({std::string(f.name), std::string(f.description)});
+  DataSink sink;
+  const auto start = std::chrono::steady_clock::now();
+  report.checks = run_checks(ValidationContext{scenes, report.mode == "full", &sink}, only);
+  report.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.data_sets = std::move(sink.data_sets);
 
-  fs::create_directories(out);
+  fs::create_directories(out / "data");
+  fs::create_directories(out / "figures");
+  for (const auto& d : report.data_sets) io::write_file_atomically(out / data_file(d), d.to_csv());
+  // report.json first: the figure script reads the figure specs from it.
+  const fs::path script = RODLAB_SOURCE_DIR "/validation/make_figures.py";
+  const auto pythons = figure_pythons();
+  report.figures.command = pythons.front() + " " + shell_quote(script.string()) + " " +
+                           shell_quote(out.string());
+  io::write_file_atomically(out / "report.json", to_json(report));
+  if (reader.flag("--no-figures")) {
+    report.figures.state = "skipped";
+    report.figures.message = "--no-figures";
+  } else {
+    report.figures = run_figure_script(report, pythons, script, out);
+  }
   io::write_file_atomically(out / "report.json", to_json(report));
   io::write_file_atomically(out / "report.md", to_markdown(report));
+  io::write_file_atomically(out / "index.html", to_html(report, out));
 
   for (const auto& c : report.checks) {
     if (c.passed) continue;
@@ -71,8 +117,13 @@ int run(const Invocation& inv) {
     std::cout << " (" << c.reference << ")\n";
     if (!c.detail.empty()) std::cout << indented(c.detail, "     ");
   }
+  if (report.figures.state != "generated") {
+    std::cout << "figures " << report.figures.state << " (the report is complete without them)\n";
+    if (!report.figures.message.empty()) std::cout << indented(report.figures.message, "     ");
+  }
   std::cout << report.passed() << " passed, " << report.failed() << " failed (" << report.mode
-            << " suite; report in " << (out / "report.md").string() << ")\n";
+            << " suite, " << format_number(report.wall_time_s) << " s; report in "
+            << (out / "index.html").string() << ")\n";
   return report.failed() == 0 ? kSolved : kNotConverged;
 }
 
@@ -81,15 +132,20 @@ int run(const Invocation& inv) {
 const Command& validate_command() {
   static const Command command{
       "validate",
-      "[--quick|--full] [--out DIR] [--scenes DIR]",
-      "run the validation suite; write report.json and report.md",
-      "Runs the validation checks: every example scene loads, and derived quantities equal\n"
-      "their closed forms. Each check records its measured value, the reference (and where it\n"
-      "comes from), the tolerance and pass/fail. Writes DIR/report.json (with provenance: git\n"
-      "commit, compiler, build type, date, command line, library versions) and DIR/report.md,\n"
-      "atomically, and prints a summary `N passed, M failed`.\n"
+      "[--quick|--full] [--out DIR] [--scenes DIR] [--only FAMILY,...] [--no-figures]",
+      "run the validation suite; write index.html, report.json, report.md, data and figures",
+      "Runs the validation checks (families: scenes, statics, dynamics; docs/validation.md).\n"
+      "Each check records its measured value, the reference (and where it comes from), the\n"
+      "tolerance and pass/fail. Writes into DIR, atomically: index.html (one self-contained\n"
+      "page with every check and figure), report.json (checks, data sets, figure specs and\n"
+      "provenance: git commit, compiler and flags, build type, CPU, OS, date, command line,\n"
+      "library versions), report.md, data/*.csv (the numbers behind the figures) and\n"
+      "figures/*.svg (drawn by validation/make_figures.py with python3-matplotlib; without it\n"
+      "the report says so). Prints each failed check and a summary `N passed, M failed`.\n"
+      "--quick (default) takes at most 5 minutes on 2 cores; --full adds the slow checks.\n"
       "\n"
-      "Exit status: 0 every check passed; 1 some check failed; 2 bad usage (nothing written).\n",
+      "Exit status: 0 every check passed; 1 some check failed; 2 bad usage (nothing written).\n"
+      "The figures do not change the exit status.\n",
       {},
       kOptions,
       &run};

@@ -1,9 +1,9 @@
 #include "validation_checks.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <exception>
+#include <cstdio>
+#include <stdexcept>
 
 namespace rodlab::cli {
 namespace fs = std::filesystem;
@@ -26,6 +26,32 @@ Check relative_check(std::string name, double measured, double expected, double 
   return c;
 }
 
+Check upper_bound_check(std::string name, double measured, double bound, std::string reference) {
+  Check c;
+  c.name = std::move(name);
+  c.measured = measured;
+  c.expected = bound;
+  c.tolerance = 0.0;
+  c.reference = std::move(reference);
+  c.passed = std::isfinite(measured) && measured <= bound;
+  c.detail = "passes when measured <= " + [&] {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", bound);
+    return std::string(buffer);
+  }();
+  return c;
+}
+
+Check range_check(std::string name, double measured, double lo, double hi, std::string reference) {
+  Check c = relative_check(std::move(name), measured, 0.5 * (lo + hi),
+                           (hi - lo) / std::abs(lo + hi), std::move(reference));
+  c.passed = std::isfinite(measured) && measured >= lo && measured <= hi;
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "passes when %.6g <= measured <= %.6g", lo, hi);
+  c.detail = buffer;
+  return c;
+}
+
 Check boolean_check(std::string name, bool ok, std::string reference, std::string detail) {
   Check c;
   c.name = std::move(name);
@@ -38,31 +64,57 @@ Check boolean_check(std::string name, bool ok, std::string reference, std::strin
   return c;
 }
 
-std::span<const CheckFamily> check_families() {
-  // Add a family here (and its function in its own file).
-  static const std::array<CheckFamily, 2> families{{
-      {"scenes", "example scenes load; derived quantities equal their closed forms", &scene_checks},
-      {"statics", "statics schemes on the thesis's 2.7 problems and closed forms", &statics_checks},
-  }};
-  return families;
+namespace {
+std::string number_text(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+}  // namespace
+
+Cell::Cell(double v) : text(number_text(v)) {}
+Cell::Cell(int v) : text(std::to_string(v)) {}
+Cell::Cell(long v) : text(std::to_string(v)) {}
+
+void DataSet::add_row(std::vector<Cell> row) {
+  if (row.size() != columns.size())
+    throw std::logic_error("data set " + name + ": a row of " + std::to_string(row.size()) +
+                           " cells for " + std::to_string(columns.size()) + " columns");
+  rows.push_back(std::move(row));
 }
 
-std::vector<Check> run_checks(const ValidationContext& context) {
-  std::vector<Check> all;
-  for (const auto& family : check_families()) {
-    std::vector<Check> checks;
-    try {
-      checks = family.run(context);
-    } catch (const std::exception& e) {
-      checks = {boolean_check(std::string(family.name) + " family runs", false,
-                              "runs without an exception", e.what())};
+std::string DataSet::to_csv() const {
+  auto quoted = [](const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string out = "\"";
+    for (char c : s) {
+      if (c == '"') out += '"';
+      out += c;
     }
-    for (auto& c : checks) {
-      c.family = std::string(family.name);
-      all.push_back(std::move(c));
-    }
+    return out + "\"";
+  };
+  std::string out;
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (i > 0) out += ',';
+    out += quoted(columns[i]);
   }
-  return all;
+  out += '\n';
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      if (i > 0) out += ',';
+      out += row[i].numeric ? row[i].text : quoted(row[i].text);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+void ValidationContext::emit(DataSet data) const {
+  if (sink == nullptr) return;
+  data.family = sink->current_family;
+  sink->data_sets.push_back(std::move(data));
 }
 
 std::vector<fs::path> scene_files(const fs::path& dir) {

@@ -2,8 +2,12 @@
 // The checks of `rodlab validate`. A check compares one measured number with a reference
 // whose origin is stated (closed form, other scheme, SUNDIALS reference, literature), within
 // a stated tolerance. Checks come in families; each family is one function registered in
-// check_families() (validation_checks.cpp), so a later issue adds its checks by adding one
+// check_families() (validation_families.cpp), so a later issue adds its checks by adding one
 // function and one line there.
+//
+// A family may also emit data sets (ValidationContext::emit): the numbers behind its checks as a
+// table (DIR/data/NAME.csv), each with the figures drawn from it (DIR/figures/FIGURE.svg, by
+// validation/make_figures.py from the CSV and the figure spec in report.json).
 #include <filesystem>
 #include <optional>
 #include <span>
@@ -30,12 +34,69 @@ struct Check {
 /// Passes when |measured - expected| <= tolerance |expected|.
 Check relative_check(std::string name, double measured, double expected, double tolerance,
                      std::string reference);
+/// Passes when measured <= bound (finite); expected = bound, tolerance 0, the bound named in
+/// the reference.
+Check upper_bound_check(std::string name, double measured, double bound, std::string reference);
+/// Passes when lo <= measured <= hi; expected = (lo + hi) / 2, tolerance = the half-width
+/// relative to it.
+Check range_check(std::string name, double measured, double lo, double hi, std::string reference);
 /// A yes/no check (measured 1 or 0, expected 1).
 Check boolean_check(std::string name, bool ok, std::string reference, std::string detail = {});
+
+/// One cell of a data set: a number (written with 17 significant digits) or a label.
+struct Cell {
+  std::string text;
+  bool numeric = true;
+  Cell(double v);  // NOLINT(google-explicit-constructor): rows are written as {1.0, "rk4", 3}
+  Cell(int v);     // NOLINT(google-explicit-constructor)
+  Cell(long v);    // NOLINT(google-explicit-constructor)
+  Cell(std::string s) : text(std::move(s)), numeric(false) {}  // NOLINT
+  Cell(const char* s) : text(s), numeric(false) {}             // NOLINT
+};
+
+/// How validation/make_figures.py draws one figure from a data set.
+struct FigureSpec {
+  std::string name;   ///< file stem: figures/NAME.svg (unique over the report)
+  std::string kind;   ///< line | loglog | semilogy | semilogx | shape (equal axes) | map
+  std::string x;      ///< column on the horizontal axis
+  std::vector<std::string> y;  ///< one curve per column (map: exactly one, the colour value...)
+  std::string series;          ///< optional: one curve per distinct value of this column
+  std::string title, xlabel, ylabel;
+  std::string caption;                  ///< what the reader sees, under the figure
+  std::vector<double> reference_slopes; ///< loglog: dashed lines of these slopes
+  std::string style = "lines";          ///< lines | markers | lines+markers
+  bool absolute = false;                ///< plot |y| (log axes of signed errors)
+  std::string select;                   ///< only the rows whose series value starts with this
+};
+
+/// A table of numbers behind some checks, written to DIR/data/NAME.csv.
+struct DataSet {
+  std::string name;  ///< file stem: data/NAME.csv (unique over the report)
+  std::string family;
+  std::string description;
+  std::vector<std::string> columns;
+  std::vector<std::vector<Cell>> rows;
+  std::vector<FigureSpec> figures;
+
+  /// Appends a row (throws std::logic_error if its width is not columns.size()).
+  void add_row(std::vector<Cell> row);
+  /// The CSV text: a header line, then one line per row (labels quoted when needed).
+  std::string to_csv() const;
+};
+
+/// Where families put their data sets: run_checks sets the family name on each.
+struct DataSink {
+  std::vector<DataSet> data_sets;
+  std::string current_family;
+};
 
 struct ValidationContext {
   std::filesystem::path scenes_dir;  ///< the example scenes (*.yaml)
   bool full = false;                 ///< --full: also the slow checks
+  DataSink* sink = nullptr;          ///< where emit() goes; nullptr drops the data
+
+  /// Records a data set (and its figures) for the report.
+  void emit(DataSet data) const;
 };
 
 struct CheckFamily {
@@ -47,8 +108,10 @@ struct CheckFamily {
 /// Every family, in report order.
 std::span<const CheckFamily> check_families();
 
-/// Runs every family; a family that throws yields one failed check saying so.
-std::vector<Check> run_checks(const ValidationContext& context);
+/// Runs the families whose names are in `only` (every family when empty); a family that throws
+/// yields one failed check saying so. Data sets go to context.sink.
+std::vector<Check> run_checks(const ValidationContext& context,
+                              std::span<const std::string> only = {});
 
 /// The scene files of a directory (*.yaml, sorted by name).
 std::vector<std::filesystem::path> scene_files(const std::filesystem::path& dir);
@@ -57,7 +120,7 @@ std::vector<std::filesystem::path> scene_files(const std::filesystem::path& dir)
 
 namespace rodlab::cli {
 
-// The families (one file each), registered in validation_checks.cpp.
+// The families (one file each), registered in validation_families.cpp.
 
 /// validation_scene_checks.cpp: every example scene loads, and its derived quantities
 /// (section properties, K, M, V, wave speeds, the explicit step (3.44), the Kirchhoff error
@@ -67,5 +130,10 @@ std::vector<Check> scene_checks(const ValidationContext& context);
 /// validation_statics_checks.cpp: observed orders on the gravity cantilever, both ends fixed,
 /// closed forms (full circle, straight cable), reference agreement, structure drift.
 std::vector<Check> statics_checks(const ValidationContext& context);
+
+/// validation_dynamics_checks.cpp: bending frequency against its closed form, energy without
+/// and with damping, det drift, the stability limit, the static limit, agreement between
+/// schemes and with the IDA reference.
+std::vector<Check> dynamics_checks(const ValidationContext& context);
 
 }  // namespace rodlab::cli

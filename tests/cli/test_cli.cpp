@@ -340,6 +340,22 @@ BOOST_AUTO_TEST_CASE(dynamic_writes_results_and_reports_instability) {
                    {"kirchhoff", "not supported yet"});
 }
 
+// --alpha, bdf-alpha's parameter: outside [-0.5, 0] or not a number it is bad input (2, nothing
+// written); inside it runs and the result names the scheme.
+BOOST_AUTO_TEST_CASE(dynamic_alpha_option) {
+  Sandbox box;
+  const std::string scene = quote(kScene);
+  expect_bad_input(box, "dynamic " + scene + " --scheme bdf-alpha --alpha 0.1 --t-end 0.1 --out a.json",
+                   {"--alpha", "[-0.5, 0]", "got 0.1"});
+  expect_bad_input(box, "dynamic " + scene + " --scheme bdf-alpha --alpha -0.6 --t-end 0.1",
+                   {"--alpha", "got -0.6"});
+  expect_bad_input(box, "dynamic " + scene + " --alpha x --t-end 0.1", {"--alpha", "got x"});
+  const Run ok = box.run("dynamic " + scene +
+                         " --scheme bdf-alpha --alpha -0.5 --t-end 0.1 --nodes 10 --out a.json");
+  BOOST_TEST(ok.status == 0, ok.err);
+  BOOST_TEST(contains(read(box.work / "a.json"), "\"scheme\": \"bdf-alpha\""));
+}
+
 BOOST_AUTO_TEST_CASE(unknown_scheme_lists_the_valid_ones_for_the_command) {
   Sandbox box;
   const std::string scene = quote(kScene);
@@ -446,21 +462,26 @@ BOOST_AUTO_TEST_CASE(unfinished_subcommands_check_their_input_first) {
 
 // --- validate -------------------------------------------------------------------------------
 
+// The scene family only (the whole quick suite takes minutes: tests/cli/test_validate.cpp,
+// label validation); without figures (the writers are tested in test_validation_report.cpp).
 BOOST_AUTO_TEST_CASE(validate_writes_a_report_with_checks_for_every_scene) {
   Sandbox box;
-  const Run r = box.run("validate --quick --out report");
+  const Run r = box.run("validate --quick --only scenes --no-figures --out report");
   BOOST_TEST_CONTEXT(r.out << r.err) { BOOST_TEST(r.status == 0); }
   BOOST_TEST(contains(r.out, " passed, 0 failed"));
   BOOST_REQUIRE(fs::exists(box.work / "report" / "report.json"));
   BOOST_REQUIRE(fs::exists(box.work / "report" / "report.md"));
-  BOOST_TEST(
-      (box.files() == std::set<std::string>{"report", "report/report.json", "report/report.md"}));
+  BOOST_TEST((box.files() == std::set<std::string>{"report", "report/report.json",
+                                                    "report/report.md", "report/index.html",
+                                                    "report/data", "report/figures"}));
 
   const Json j = Json::parse(read(box.work / "report" / "report.json"));
   BOOST_TEST(j["schema"] == "rodlab.validation-report/1");
   BOOST_TEST(j["summary"]["failed"].get<int>() == 0);
   BOOST_TEST(j["provenance"].contains("git_commit"));
-  BOOST_TEST(j["provenance"]["command_line"] == "rodlab validate --quick --out report");
+  BOOST_TEST(j["provenance"]["command_line"] ==
+             "rodlab validate --quick --only scenes --no-figures --out report");
+  BOOST_TEST(j["figures"]["state"] == "skipped");
   BOOST_TEST(j["provenance"]["libraries"].contains("Eigen"));
   for (const auto& c : j["checks"]) {
     BOOST_TEST(c.contains("name"));
@@ -486,9 +507,9 @@ BOOST_AUTO_TEST_CASE(validate_fails_on_a_bad_scene) {
   Sandbox box;
   fs::create_directory(box.work / "scenes");
   box.write("scenes/broken.yaml", "schema: rodlab.scene/1\nname: broken\n");
-  const Run r = box.run("validate --scenes scenes --out out");
+  const Run r = box.run("validate --only scenes --no-figures --scenes scenes --out out");
   BOOST_TEST(r.status == 1);
-  // Exactly one failure: the broken scene (the other families' checks pass).
+  // Exactly one failure: the broken scene.
   BOOST_TEST(contains(r.out, " passed, 1 failed"));
   BOOST_TEST(contains(r.out, "scene broken loads"));
   BOOST_TEST(fs::exists(box.work / "out" / "report.json"));
@@ -500,4 +521,5 @@ BOOST_AUTO_TEST_CASE(validate_usage_errors_write_nothing) {
   expect_bad_input(box, "validate --scenes nowhere --out out", {"--scenes", "nowhere"});
   box.write("file", "x");
   expect_bad_input(box, "validate --out file", {"--out", "not a directory"});
+  expect_bad_input(box, "validate --only scenes,nope --out out", {"--only", "nope", "statics"});
 }

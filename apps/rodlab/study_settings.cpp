@@ -1,0 +1,92 @@
+#include "study_settings.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "rodlab/io/atomic_file.hpp"
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
+
+namespace rodlab::cli::study {
+
+std::vector<int> default_nodes(solvers::Problem problem) {
+  if (problem == solvers::Problem::statics) return {6, 11, 21, 41, 81};
+  return {10, 20};
+}
+
+std::vector<int> study_nodes(const Settings& settings) {
+  return settings.nodes.empty() ? default_nodes(settings.problem) : settings.nodes;
+}
+
+std::vector<double> study_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
+                                int nodes) {
+  if (!settings.dts.empty()) return settings.dts;
+  const auto problem = solvers::dynamics::DynamicProblem::from_scene(settings.scene);
+  const double dt = solvers::dynamics::auto_time_step(problem, scheme.name, nodes);
+  return {dt, dt / 2, dt / 4, dt / 8};
+}
+
+std::vector<solvers::SchemeInfo> available_schemes(solvers::Problem problem) {
+  std::vector<solvers::SchemeInfo> out;
+  for (const auto& s : solvers::all_schemes())
+    if (s.problem == problem && s.arrives.empty()) out.push_back(s);
+  return out;
+}
+
+bool scheme_available(std::string_view name) {
+  const auto s = solvers::find_scheme(name);
+  return s && s->arrives.empty();
+}
+
+namespace {
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+Json settings_json(const Settings& s) {
+  Json schemes = Json::array();
+  for (const auto& scheme : s.schemes) schemes.push_back(std::string(scheme.name));
+  return Json{{"scene_file", s.scene_path},
+              {"scene_hash", std::to_string(std::hash<std::string>{}(file_text(s.scene_path)))},
+              {"overrides", s.overrides},
+              {"scene", s.scene.name},
+              {"problem", std::string(solvers::to_string(s.problem))},
+              {"schemes", schemes},
+              {"nodes", study_nodes(s)},
+              {"dt", s.dts},
+              {"reference", s.reference ? Json(*s.reference) : Json(nullptr)},
+              {"solver_tol", s.tol},
+              {"t_end", s.t_end},
+              {"repeats", s.repeats}};
+}
+
+void write_output(const std::string& dir, const std::string& name, const std::string& content) {
+  std::filesystem::create_directories(dir);
+  io::write_file_atomically(std::filesystem::path(dir) / name, content);
+}
+
+std::string csv_number(double v) {
+  if (!std::isfinite(v)) return "";
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+std::string csv_text(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c == '\n' ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+}  // namespace rodlab::cli::study

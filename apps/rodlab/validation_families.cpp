@@ -1,0 +1,48 @@
+// The families of `rodlab validate`, in report order, and the loop that runs them.
+#include <algorithm>
+#include <array>
+#include <exception>
+
+#include "validation_checks.hpp"
+
+namespace rodlab::cli {
+
+std::span<const CheckFamily> check_families() {
+  // Add a family here (and its function in its own file, declared in validation_checks.hpp).
+  // The studies of issue #5 (work-precision diagrams, stability maps; `rodlab study`) belong in
+  // a family of their own ("studies"): it runs the study functions (the slow ones only with
+  // context.full), states its checks, and emits each study's table as a DataSet with figures
+  // of kind loglog (work-precision: x = wall time, y = error, series = scheme, style markers)
+  // or map (stability: x = N, y = E, y[0] = the measured/computed limit).
+  static const std::array<CheckFamily, 3> families{{
+      {"scenes", "example scenes load; derived quantities equal their closed forms", &scene_checks},
+      {"statics", "statics schemes on the thesis's 2.7 problems and closed forms", &statics_checks},
+      {"dynamics",
+       "dynamics schemes on the Table 2.1 cantilever: bending frequency, energy with and without "
+       "damping, det drift, stability limit, static limit, agreement between schemes and with IDA",
+       &dynamics_checks},
+  }};
+  return families;
+}
+
+std::vector<Check> run_checks(const ValidationContext& context, std::span<const std::string> only) {
+  std::vector<Check> all;
+  for (const auto& family : check_families()) {
+    if (!only.empty() && std::find(only.begin(), only.end(), family.name) == only.end()) continue;
+    if (context.sink) context.sink->current_family = std::string(family.name);
+    std::vector<Check> checks;
+    try {
+      checks = family.run(context);
+    } catch (const std::exception& e) {
+      checks = {boolean_check(std::string(family.name) + " family runs", false,
+                              "runs without an exception", e.what())};
+    }
+    for (auto& c : checks) {
+      c.family = std::string(family.name);
+      all.push_back(std::move(c));
+    }
+  }
+  return all;
+}
+
+}  // namespace rodlab::cli
