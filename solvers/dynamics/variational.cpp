@@ -1,17 +1,23 @@
 #include "rodlab/solvers/dynamics/variational.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "rodlab/lie/small_angle.hpp"
+#include "rodlab/solvers/common/block_tridiagonal.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {
 
 namespace se3 = lie::se3;
 namespace small = lie::small_angle;
+using lie::Matrix6;
+
+/// |nu - nu*| that the Kirchhoff constraint solve reaches (relative to max(1, |nu*|)).
+constexpr double kConstraintTol = 1e-12;
 
 class Variational final : public Stepper {
  public:
@@ -23,20 +29,35 @@ class Variational final : public Stepper {
     if (static_cast<int>(g0.size()) != n_)
       throw std::invalid_argument("variational: expected " + std::to_string(n_) +
                                   " initial poses, got " + std::to_string(g0.size()));
-    if (problem.is_kirchhoff())
-      throw std::invalid_argument("variational: rod.model kirchhoff is not supported yet");
+    kirchhoff_ = problem.is_kirchhoff();
+    nu_star_ = problem.model().xi_star().tail<3>();
     g_.assign(g0.begin(), g0.end());
     G_.resize(n_ - 1);
     xi_.resize(n_ - 1);
     for (int j = 0; j + 1 < n_; ++j) {
       G_[j] = g_[j].inverse() * g_[j + 1];
       xi_[j] = G_[j].log() / ds_;
+      if (kirchhoff_) {
+        // Start on the constraint: a chord of the sampled initial shape is shorter than its arc
+        // by O((kappa ds)^2); the segment keeps its rotation and gets nu = nu*.
+        xi_[j].tail<3>() = nu_star_;
+        G_[j] = SE3::exp(ds_ * xi_[j]);
+        g_[j + 1] = g_[j] * G_[j];
+      }
     }
     eta_.assign(n_, Vector6::Zero());
     mu_.assign(n_, Vector6::Zero());
     M_ = problem.model().M_diag();
     M_inv_ = M_.cwiseInverse();
     entries_ = problem.entry_nodes(n_);
+    if (kirchhoff_) {
+      mu_free_.assign(n_, Vector6::Zero());
+      f_.assign(n_ - 1, Vector3::Zero());
+      c_.assign(n_ - 1, Vector3::Zero());
+      B_.assign(n_ - 1, Matrix63::Zero());
+      C_.assign(n_ - 1, Matrix63::Zero());
+      A_.resize(n_ - 1);
+    }
   }
 
   StepStatus step(double t, double dt) override {
@@ -65,8 +86,10 @@ class Variational final : public Stepper {
       const double s_mid = (j + 0.5) * ds_;
       xi_[j] = xi;
       g_[j + 1] = g_[j] * G_[j];
-      const Vector6 lambda =
-          small::dexp_inv_transpose_apply(x, P_.internal_wrench(xi, xi_dot, s_mid, t1), k);
+      const Vector6 lambda = small::dexp_inv_transpose_apply(
+          x, kirchhoff_ ? kirchhoff_stress(xi, xi_dot, s_mid, t1)
+                        : P_.internal_wrench(xi, xi_dot, s_mid, t1),
+          k);
       dissipated += ds_ * xi_dot.dot(V.cwiseProduct(xi_dot));
       if (actuators) work += ds_ * P_.actuator_power(xi, xi_dot, s_mid, t1);
       if (j > 0 && !node(j, t1, dt, E, lambda, lambda_prev, applied, drag, dissipated, work))
@@ -78,6 +101,12 @@ class Variational final : public Stepper {
     if (!node(tip, t1, dt, E, P_.tip_load(g_[tip].rotation(), t1), lambda_prev, applied, drag,
               dissipated, work))
       return diverged(tip, t1, dt);
+    if (kirchhoff_) {
+      if (const auto failure = enforce_constraints(dt); !failure.empty())
+        return StepStatus::failed("variational: the Kirchhoff constraint solve " + failure +
+                                  " (t = " + std::to_string(t1) + " s, dt = " +
+                                  std::to_string(dt) + " s)");
+    }
     ledger_.dissipated += dt * dissipated;
     ledger_.work_in += dt * work;
     return {};
@@ -98,15 +127,7 @@ class Variational final : public Stepper {
   double max_det_deviation() const override { return dynamics::max_det_deviation(g_); }
 
   std::vector<result::CenterlineSample> centerline() const override {
-    std::vector<result::CenterlineSample> out(n_);
-    for (int j = 0; j < n_; ++j) {
-      // node strain: the adjacent segments' mean (one segment at the ends)
-      const Vector6 xi = j == 0        ? xi_[0]
-                         : j == n_ - 1 ? xi_[n_ - 2]
-                                       : Vector6(0.5 * (xi_[j - 1] + xi_[j]));
-      out[j] = {j * ds_, g_[j], xi};
-    }
-    return out;
+    return staggered_centerline(g_, xi_, ds_);
   }
 
  private:
@@ -144,7 +165,86 @@ class Variational final : public Stepper {
     }
     const Vector6 mu_old = mu_[j];
     mu_[j] = E.coAd_apply(mu_old) + (dt / w) * force;
-    return solve_velocity(j, dt, mu_old);
+    if (kirchhoff_) mu_free_[j] = mu_[j];
+    return solve_velocity(j, dt, mu_old - mu_[j]);
+  }
+
+  /// Kirchhoff rods: the rod's own wrench has no force part (nu = nu* holds; the force across
+  /// the section is the constraint force f of enforce_constraints), the actuators act as usual.
+  Vector6 kirchhoff_stress(Vector6 xi, Vector6 xi_dot, double s, double t) const {
+    xi.tail<3>() = nu_star_;
+    xi_dot.tail<3>().setZero();
+    return P_.internal_wrench(xi, xi_dot, s, t);
+  }
+
+  /// The Kirchhoff restriction (3.45) done with constraint forces (docs/dynamics.md): segment k
+  /// carries an unknown force f_k in its stress, lambda^k += dexp^-T_{ds xi^k} [0; f_k] = B_k f_k,
+  /// which enters the momenta of nodes k (+B_k f_k) and k + 1 (-Ad^T_{G^k} B_k f_k = -C_k f_k)
+  /// through (3.41). The f_k are chosen so that the velocities of (3.42) take every segment of
+  /// the next step's compatibility (3.38) onto the constraint:
+  ///   c_k = nu-part of log((E^k)^-1 G^k E^(k+1)) / ds - nu* = 0,   E^j = exp(dt eta^j),
+  /// (SHAKE: the constraint on the next positions through this step's impulses; the constraint
+  /// forces do no work to the solve's tolerance). Newton with the chord matrix of the linearised
+  /// map, block tridiagonal in the segments with 3 x 3 blocks:
+  ///   dc_k = (dt/ds) [dexp^-1_{-ds xi^k}]_nu (d eta^(k+1) - Ad_{(G^k)^-1} d eta^k),
+  ///   d eta^j = (dt / w_j) M^-1 (B_j f_j - C_(j-1) f_(j-1)).
+  /// Returns an empty string on success, else what failed.
+  std::string enforce_constraints(double dt) {
+    const int m = n_ - 1;  // segments
+    auto weight = [&](int j) { return j == n_ - 1 ? 0.5 * ds_ : ds_; };
+    // Chord matrix at the configuration of this step.
+    for (int k = 0; k < m; ++k) {
+      const Vector6 x = ds_ * xi_[k];
+      B_[k] = se3::dexp_inv(x).transpose().rightCols<3>();
+      C_[k] = G_[k].Ad().transpose() * B_[k];
+    }
+    for (int k = 0; k < m; ++k) {
+      const Eigen::Matrix<double, 3, 6> D =
+          (dt / ds_) * se3::dexp_inv(-ds_ * xi_[k]).bottomRows<3>();
+      const Matrix6 H = G_[k].inverse().Ad();
+      const Vector6 Q_next = (dt / weight(k + 1)) * M_inv_;
+      A_.Di[k] = -D * (Q_next.asDiagonal() * C_[k]);
+      A_.Up[k].setZero();
+      A_.Lo[k].setZero();
+      if (k + 1 < m) A_.Up[k] = D * (Q_next.asDiagonal() * B_[k + 1]);
+      if (k >= 1) {
+        const Vector6 Q = (dt / weight(k)) * M_inv_;
+        A_.Di[k] -= D * H * (Q.asDiagonal() * B_[k]);
+        A_.Lo[k] = D * H * (Q.asDiagonal() * C_[k - 1]);
+      }
+    }
+    if (!A_.factor()) return "has a singular matrix";
+    for (auto& f : f_) f.setZero();
+    double worst = 0.0;
+    for (int it = 0; it <= opt_.max_iterations; ++it) {
+      // residuals of the velocities at the current forces
+      worst = 0.0;
+      SE3 E = SE3::identity();
+      for (int k = 0; k < m; ++k) {
+        const SE3 E_next = small::exp(dt * eta_[k + 1]);
+        const Vector6 x = (E.inverse() * G_[k] * E_next).log();
+        c_[k] = x.tail<3>() / ds_ - nu_star_;
+        worst = std::max(worst, c_[k].lpNorm<Eigen::Infinity>());
+        E = E_next;
+      }
+      if (!(worst <= kConstraintTol * std::max(1.0, nu_star_.norm()))) {
+        if (it == opt_.max_iterations || !std::isfinite(worst)) break;
+      } else {
+        return {};
+      }
+      for (auto& c : c_) c = -c;
+      A_.solve(c_);
+      for (int k = 0; k < m; ++k) f_[k] += c_[k];
+      // the momenta with the constraint impulses, and their velocities (3.42)
+      for (int j = 1; j < n_; ++j) {
+        Vector6 impulse = -C_[j - 1] * f_[j - 1];
+        if (j < m) impulse += B_[j] * f_[j];
+        mu_[j] = mu_free_[j] + (dt / weight(j)) * impulse;
+        const Vector6 r0 = small::dexp_inv_transpose_apply(dt * eta_[j], M_.cwiseProduct(eta_[j])) - mu_[j];
+        if (!solve_velocity(j, dt, r0)) return "diverged in the velocity of node " + std::to_string(j);
+      }
+    }
+    return "did not converge (max |nu - nu*| = " + std::to_string(worst) + ")";
   }
 
   StepStatus diverged(int j, double t1, double dt) const {
@@ -160,9 +260,10 @@ class Variational final : public Stepper {
   /// dexp^-T_x = I - ad_x^T / 2 + O(x^2)), frozen at eta_old and inverted to the same order,
   /// J^-1 = (I + dt/2 M^-1 B) M^-1 + O(dt^2 |eta|^2), without forming a matrix. The first
   /// residual needs no evaluation: eta_old solved (3.42) with mu_old, so r(eta_old) = mu_old -
-  /// mu (to the previous solve's tolerance, which the following exact residuals correct). The
+  /// mu (to the previous solve's tolerance, which the following exact residuals correct); the
+  /// caller passes that first residual r0. The
   /// solve has converged when the step is below tol in the kinetic-energy norm |x|_M^2 = x^T M x.
-  bool solve_velocity(int j, double dt, const Vector6& mu_old) {
+  bool solve_velocity(int j, double dt, const Vector6& r0) {
     const Vector6& mu = mu_[j];
     const Vector6 eta_old = eta_[j];
     const Vector6 M_eta_old = M_.cwiseProduct(eta_old);
@@ -173,7 +274,7 @@ class Variational final : public Stepper {
       const Vector6 By = se3::coad_apply(eta_old, r) + se3::coad_apply(y, M_eta_old);
       return Vector6(y + half_dt_M_inv.cwiseProduct(By));
     };
-    Vector6 eta = eta_old - J_inv(mu_old - mu);
+    Vector6 eta = eta_old - J_inv(r0);
     const double tol2 = opt_.tol * opt_.tol;
     for (int it = 1; it < opt_.max_iterations; ++it) {
       const Vector6 r = small::dexp_inv_transpose_apply(dt * eta, M_.cwiseProduct(eta)) - mu;
@@ -207,6 +308,14 @@ class Variational final : public Stepper {
   std::vector<DynamicProblem::EntryNode> entries_;
   Energy ledger_;
   double kinetic_old_ = 0.0;
+  // Kirchhoff rods (enforce_constraints)
+  using Matrix63 = Eigen::Matrix<double, 6, 3>;
+  bool kirchhoff_ = false;
+  Vector3 nu_star_;
+  std::vector<Vector6> mu_free_;      ///< momenta without the constraint impulses
+  std::vector<Vector3> f_, c_;        ///< constraint forces per segment; residuals / steps
+  std::vector<Matrix63> B_, C_;       ///< a force's impulse on the inner and outer node
+  BlockTridiagonal<3> A_;             ///< the chord matrix dc/df
 };
 
 }  // namespace

@@ -14,7 +14,9 @@
 //   dexp^-T_{dt eta^j} M eta^j = mu^j, solved for eta^j by Newton   (3.42)
 // with trapezoid weights w_j (1/2 at the tip node; the thesis gives the tip a full cell, which
 // makes the scheme first order in space). Conservative loads are evaluated at the new
-// configuration, drag at the old velocity.
+// configuration, drag at the old velocity. Kirchhoff rods (nu = nu*) get constraint forces per
+// segment, solved each step so that the next step's segments satisfy the constraint (SHAKE;
+// variational.cpp enforce_constraints, docs/dynamics.md).
 #include <memory>
 
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
