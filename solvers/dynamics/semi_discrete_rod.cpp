@@ -249,15 +249,7 @@ Energy SemiDiscreteRod::energy(double dissipated, double work_in) const {
 double SemiDiscreteRod::max_det_deviation() const { return dynamics::max_det_deviation(g_); }
 
 std::vector<result::CenterlineSample> SemiDiscreteRod::centerline() const {
-  std::vector<result::CenterlineSample> out(n_);
-  for (int j = 0; j < n_; ++j) {
-    // node strain: the adjacent segments' mean (one segment at the ends), as `variational`
-    const Vector6 xi = j == 0        ? xi_[0]
-                       : j == n_ - 1 ? xi_[n_ - 2]
-                                     : Vector6(0.5 * (xi_[j - 1] + xi_[j]));
-    out[j] = {j * ds_, g_[j], xi};
-  }
-  return out;
+  return staggered_centerline(g_, xi_, ds_);
 }
 
 }  // namespace rodlab::solvers::dynamics

@@ -2,12 +2,16 @@
 // Shared scenes and measurements of the dynamics tests. The rod is the thesis' Table 2.1 rod
 // (L = 0.1 m, D = 1 cm, E = 1 MPa, G = 0.33 MPa, rho = 1000 kg/m^3), clamped at the origin,
 // along +z.
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/result/dynamic_result.hpp"
+#include "rodlab/rod/energies.hpp"
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/stepper.hpp"
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 
 namespace rodlab::testing::dynamics {
@@ -21,6 +25,35 @@ inline scene::Scene rod_scene(const std::string& loads, const std::string& tip, 
       "  material: {E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: " + std::to_string(alpha) + "}\n"
       "tip:\n  free: " + tip + "\nloads: " + loads + "\n";
   return io::load_scene_from_string(yaml, "dynamics-test.yaml");
+}
+
+/// scenes/viscous-cantilever.yaml with the given viscosity.
+inline scene::Scene cantilever(double viscosity) {
+  return io::load_scene_from_string(R"(schema: rodlab.scene/1
+name: viscous-cantilever
+rod:
+  length: 0.1
+  section: {shape: circle, diameter: 0.01}
+  material: {E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: )" +
+                                        std::to_string(viscosity) + R"(}
+tip:
+  free: {}
+loads:
+  gravity: [-9.81, 0, 0]
+)",
+                                    "viscous-cantilever.yaml");
+}
+
+/// At rest in the reference configuration (straight along +z).
+inline solvers::dynamics::RestState straight(const solvers::dynamics::DynamicProblem& P, int nodes) {
+  solvers::dynamics::RestState r{std::vector<lie::SE3>(nodes), std::vector<lie::Vector6>(nodes, P.model().xi_star())};
+  const double ds = P.length() / (nodes - 1);
+  for (int j = 0; j < nodes; ++j) r.g[j] = rod::reference_pose(P.model(), P.base(), j * ds);
+  return r;
+}
+
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 /// Free vibration: held bent by a tip force P (world x) at t < 1e-9 s, released at rest from the

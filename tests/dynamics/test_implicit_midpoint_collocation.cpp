@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "rodlab/io/scene_loader.hpp"
+#include "dynamics_support.hpp"
 #include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/ida_reference.hpp"
@@ -29,6 +29,7 @@
 namespace {
 
 using namespace rodlab;
+using namespace rodlab::testing::dynamics;
 using solvers::dynamics::DynamicProblem;
 using solvers::dynamics::Energy;
 using solvers::dynamics::IdaOptions;
@@ -38,41 +39,12 @@ using solvers::dynamics::Stepper;
 using lie::SE3;
 using lie::Vector3;
 
-/// scenes/viscous-cantilever.yaml with the given viscosity.
-scene::Scene cantilever(double viscosity) {
-  return io::load_scene_from_string(R"(schema: rodlab.scene/1
-name: viscous-cantilever
-rod:
-  length: 0.1
-  section: {shape: circle, diameter: 0.01}
-  material: {E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: )" +
-                                        std::to_string(viscosity) + R"(}
-tip:
-  free: {}
-loads:
-  gravity: [-9.81, 0, 0]
-)",
-                                    "viscous-cantilever.yaml");
-}
-
-/// At rest in the reference configuration (straight along +z).
-RestState straight(const DynamicProblem& P, int nodes) {
-  RestState r{std::vector<SE3>(nodes), std::vector<lie::Vector6>(nodes, P.model().xi_star())};
-  const double ds = P.length() / (nodes - 1);
-  for (int j = 0; j < nodes; ++j) r.g[j] = rod::reference_pose(P.model(), P.base(), j * ds);
-  return r;
-}
-
 std::unique_ptr<solvers::dynamics::ImplicitMidpointCollocationStepper> collocation(
     const DynamicProblem& P, int nodes, double tol = 1e-10) {
   ImplicitMidpointCollocationOptions o;
   o.nodes = nodes;
   o.tol = tol;
   return solvers::dynamics::make_implicit_midpoint_collocation(P, o, straight(P, nodes));
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 struct Run {

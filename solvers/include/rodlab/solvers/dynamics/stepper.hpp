@@ -20,6 +20,21 @@ inline double max_det_deviation(std::span<const SE3> g) {
   return worst;
 }
 
+/// The centreline of a staggered grid (`variational`, `ida`, collocation): node poses g (N)
+/// and segment strains xi (N - 1); a node's strain is the mean of its adjacent segments' (one
+/// segment at the ends).
+inline std::vector<result::CenterlineSample> staggered_centerline(std::span<const SE3> g,
+                                                                 std::span<const Vector6> xi,
+                                                                 double ds) {
+  const std::size_t n = g.size();
+  std::vector<result::CenterlineSample> out(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    const Vector6 x = j == 0 ? xi[0] : j == n - 1 ? xi[n - 2] : Vector6(0.5 * (xi[j - 1] + xi[j]));
+    out[j] = {static_cast<double>(j) * ds, g[j], x};
+  }
+  return out;
+}
+
 /// A state at rest: node poses and node strains, base first.
 struct RestState {
   std::vector<SE3> g;
