@@ -11,8 +11,8 @@ namespace rodlab::cli {
 namespace {
 
 constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
-constexpr std::array<OptionSpec, 5> kOptions{kSchemeOption, kNodesOption, kTolOption,
-                                             kOutFileOption, kSetOption};
+constexpr std::array<OptionSpec, 6> kOptions{kSchemeOption, kNodesOption, kTolOption,
+                                             kTimeOption, kOutFileOption, kSetOption};
 
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);
@@ -32,7 +32,8 @@ const Command& static_command() {
       "static",
       "SCENE [options]",
       "static equilibrium of the rod in SCENE",
-      "Solves the static equilibrium of the scene's rod under its loads and actuators at t = 0.\n"
+      "Solves the static equilibrium of the scene's rod under its loads and actuators at t = 0\n"
+      "(or at --time T: schedules are evaluated there).\n"
       "The scheme comes from --scheme or the scene's solver.scheme and must be a statics scheme\n"
       "(`rodlab schemes` lists them). The options and the scene are checked before anything\n"
       "runs. The result (spec: rodlab.static-result/1) is printed as a summary and, with --out,\n"

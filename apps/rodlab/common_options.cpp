@@ -1,5 +1,6 @@
 #include "common_options.hpp"
 
+#include <cmath>
 #include <system_error>
 
 #include "rodlab/io/result_writer.hpp"
@@ -100,6 +101,12 @@ SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::stri
     }
   }
   o.t_end = reader.positive(kTEndOption.name);
+  if (const auto time = reader.text(kTimeOption.name)) {
+    if (const auto v = to_double(*time); v && *v >= 0.0 && std::isfinite(*v))
+      o.time = *v;
+    else
+      reader.problem("--time: must be a number >= 0 (got " + *time + ")");
+  }
   o.output_every = reader.integer(kOutputEveryOption.name, 1);
   o.rtol = reader.positive(kRtolOption.name);
   o.atol = reader.positive(kAtolOption.name);
@@ -139,7 +146,7 @@ StaticRun resolve_static_run(const SolveOptions& options, const scene::Scene& sc
   StaticRun run{chosen_scheme(options, scene, scene.solver.scheme, "solver.scheme",
                               Problem::statics, command),
                 options.nodes.value_or(scene.solver.nodes), options.tol.value_or(scene.solver.tol),
-                scene.solver.max_iterations};
+                scene.solver.max_iterations, options.time.value_or(0.0)};
   return run;
 }
 

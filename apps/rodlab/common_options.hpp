@@ -29,6 +29,8 @@ inline constexpr OptionSpec kSetOption{
     true};
 inline constexpr OptionSpec kDtOption{
     "--dt", "X|auto", "time step > 0, or auto (the explicit step (3.44)); default: dynamics.dt"};
+inline constexpr OptionSpec kTimeOption{
+    "--time", "T", "time >= 0 at which the scene's schedules are evaluated; default: 0"};
 inline constexpr OptionSpec kTEndOption{"--t-end", "T", "end time > 0; default: dynamics.t_end"};
 inline constexpr OptionSpec kRtolOption{
     "--rtol", "X", "ida: relative tolerance of the time integration > 0; default: 1e-10"};
@@ -61,6 +63,7 @@ struct SolveOptions {
   std::optional<int> nodes;
   std::optional<double> tol;
   std::optional<std::filesystem::path> out;
+  std::optional<double> time;  ///< static: when the schedules are evaluated
   // dynamic only
   std::optional<TimeStep> dt;
   std::optional<double> t_end;
@@ -96,6 +99,7 @@ struct StaticRun {
   int nodes = 0;
   double tol = 0.0;
   int max_iterations = 0;
+  double time = 0.0;
 };
 struct DynamicRun {
   solvers::SchemeInfo scheme;

@@ -14,6 +14,7 @@ result::StaticResult solve_static(const scene::Scene& scene, const StaticRun& ru
   options.nodes = run.nodes;
   options.tol = run.tol;
   options.max_iterations = run.max_iterations;
+  options.time = run.time;
   return solvers::statics::solve_static(scene, options);
 }
 

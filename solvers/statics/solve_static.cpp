@@ -53,7 +53,7 @@ result::StaticResult solve_static(const StaticProblem& problem, const StaticSolv
 }
 
 result::StaticResult solve_static(const scene::Scene& scene, const StaticSolveOptions& options) {
-  return solve_static(StaticProblem::from_scene(scene), options);
+  return solve_static(StaticProblem::from_scene(scene, options.time), options);
 }
 
 }  // namespace rodlab::solvers::statics

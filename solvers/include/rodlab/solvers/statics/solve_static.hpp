@@ -13,6 +13,7 @@ struct StaticSolveOptions {
   int nodes = 50;
   double tol = 1e-10;
   int max_iterations = 50;
+  double time = 0.0;  ///< scene overload: actuator and tip-wrench schedules are evaluated here
 };
 
 /// Solves and times one static equilibrium. Throws std::invalid_argument for an unknown or not
