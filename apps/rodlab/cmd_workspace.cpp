@@ -1,12 +1,17 @@
 // rodlab workspace SCENE --samples K [options]: sample the actuator inputs, solve the statics
 // for each sample, collect the tip poses.
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
 #include <iostream>
 
 #include "rodlab/io/result_writer.hpp"
+#include "rodlab/solvers/dynamics/dynamic_workspace.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/statics/workspace.hpp"
 
 #include "availability.hpp"
@@ -22,33 +27,85 @@ namespace {
 constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
 constexpr OptionSpec kSamplesOption{
     "--samples", "K", "number of sampled input vectors, integer >= 2 (required)"};
-constexpr std::array<OptionSpec, 6> kOptions{kSamplesOption, kSchemeOption,  kNodesOption,
-                                             kTolOption,     kOutFileOption, kSetOption};
+constexpr OptionSpec kDynamicOption{
+    "--dynamic", "", "the dynamic workspace (thesis 3.4.1): K input vectors held in turn in one "
+                     "simulation; --scheme is then a dynamics scheme"};
+constexpr OptionSpec kHoldOption{
+    "--hold", "T", "--dynamic: how long each input vector is held [s] > 0; default: the first "
+                   "bending period"};
+constexpr std::array<OptionSpec, 9> kOptions{kSamplesOption, kDynamicOption, kHoldOption,
+                                             kSchemeOption,  kNodesOption,   kTolOption,
+                                             kDtOption,      kOutFileOption, kSetOption};
+
+/// The first bending period 2 pi / omega_1 of the cantilever (Euler-Bernoulli).
+double first_period(const scene::Scene& scene) {
+  const auto problem = solvers::dynamics::DynamicProblem::from_scene(scene);
+  const auto& K = problem.model().K_diag();
+  const auto& M = problem.model().M_diag();
+  const double L = problem.length();
+  const double omega1 = 1.8751040687119611 * 1.8751040687119611 / (L * L) *
+                        std::sqrt(std::min(K[0], K[1]) / M[3]);
+  return 2.0 * std::numbers::pi / omega1;
+}
 
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);
-  const SolveOptions options = read_solve_options(reader, solvers::Problem::statics, "workspace");
+  const bool dynamic = reader.flag(kDynamicOption.name);
+  const SolveOptions options = read_solve_options(
+      reader, dynamic ? solvers::Problem::dynamics : solvers::Problem::statics, "workspace");
   const auto samples = reader.integer(kSamplesOption.name, 2);
   if (!reader.arguments().has(kSamplesOption.name))
     reader.problem("--samples: required (the number of samples per actuator input)");
+  const auto hold = reader.positive(kHoldOption.name);
+  if (!dynamic && (hold || options.dt))
+    reader.problem(std::string(hold ? "--hold" : "--dt") + ": only with --dynamic");
   reader.finish();
   const scene::Scene scene = load_checked_scene(options);
   if (scene.actuators.empty())
     throw UsageError("the workspace samples actuator inputs, and " + options.scene_path +
                      " has no actuators");
-  const StaticRun run = resolve_static_run(options, scene, "workspace");
-  require_available(run.scheme);
-  solvers::statics::StaticSolveOptions solve;
-  solve.scheme = std::string(run.scheme.name);
-  solve.nodes = run.nodes;
-  solve.tol = run.tol;
-  solve.max_iterations = run.max_iterations;
-  const auto result = solvers::statics::sample_workspace(scene, solve, static_cast<int>(*samples));
+  result::WorkspaceResult result;
+  if (dynamic) {
+    solvers::dynamics::DynamicWorkspaceOptions ws;
+    ws.holds = static_cast<int>(*samples);
+    ws.hold_time = hold.value_or(first_period(scene));
+    SolveOptions timed = options;  // the run lasts holds x hold, whatever dynamics.t_end says
+    timed.t_end = ws.holds * ws.hold_time;
+    const DynamicRun run = resolve_dynamic_run(timed, scene, "workspace");
+    require_available(run.scheme);
+    ws.solve.scheme = std::string(run.scheme.name);
+    ws.solve.nodes = run.nodes;
+    ws.solve.tol = run.tol;
+    ws.solve.max_iterations = run.max_iterations;
+    ws.solve.alpha = run.alpha;
+    ws.solve.initial = scene.dynamics ? scene.dynamics->initial : scene::Initial::straight;
+    ws.solve.dt = run.dt.automatic
+                      ? solvers::dynamics::auto_time_step(
+                            solvers::dynamics::DynamicProblem::from_scene(scene), ws.solve.scheme,
+                            run.nodes)
+                      : run.dt.value;
+    ws.solve.rtol = run.rtol;
+    ws.solve.atol = run.atol;
+    result = solvers::dynamics::sample_dynamic_workspace(scene, ws);
+  } else {
+    const StaticRun run = resolve_static_run(options, scene, "workspace");
+    require_available(run.scheme);
+    solvers::statics::StaticSolveOptions solve;
+    solve.scheme = std::string(run.scheme.name);
+    solve.nodes = run.nodes;
+    solve.tol = run.tol;
+    solve.max_iterations = run.max_iterations;
+    result = solvers::statics::sample_workspace(scene, solve, static_cast<int>(*samples));
+  }
   if (options.out) io::write_result(*options.out, result);
   std::cout << "scene            " << result.scene << "\n"
             << "scheme           " << result.scheme << ", " << result.nodes << " nodes\n"
-            << "samples          " << result.samples.size() << " (" << result.failed
-            << " did not converge), seed " << result.seed << "\n"
+            << (dynamic ? "tips recorded    " : "samples          ") << result.samples.size()
+            << (dynamic ? (result.failed ? " (the run stopped early: run `rodlab dynamic` with "
+                                           "the same scheme for the reason)"
+                                         : " (" + std::to_string(*samples) + " held inputs)")
+                        : " (" + std::to_string(result.failed) + " did not converge)")
+            << ", seed " << result.seed << "\n"
             << "omega_bound      " << format_number(result.bounds.omega_bound) << " rad/m\n"
             << "epsilon          [" << format_number(result.bounds.eps_low) << ", "
             << format_number(result.bounds.eps_high) << "]\n"
@@ -68,6 +125,9 @@ const Command& workspace_command() {
       "static equilibrium of each with the statics scheme of --scheme or solver.scheme, and fits\n"
       "the constant-curvature workspace model (thesis 2.7.3): omega_bound, eps_low, eps_high.\n"
       "--out writes the sampled tips and the bounds (rodlab.workspace-result/1, JSON or CSV).\n"
+      "With --dynamic: the K input vectors are held in turn (each for --hold T, default the\n"
+      "first bending period) in one simulation with the dynamics scheme, and the model is\n"
+      "fitted around every recorded tip (the dynamic workspace, thesis 3.4.1).\n"
       "The options and the scene are checked before anything runs.\n"
       "\n"
       "Exit status: 0 every sample converged; 1 some did not; 2 bad input or usage (nothing is\n"

@@ -10,24 +10,19 @@
 namespace rodlab::solvers::statics {
 namespace {
 
-/// The input an actuator is driven by (tension, displacement, pressure, volume or q), as a
-/// reference into the scene so a sample can overwrite it, and its limits.
-struct Input {
-  scene::ScalarSchedule* value;
-  std::pair<double, double> limits;
-};
-
-Input input_of(scene::Actuator& actuator, std::size_t index) {
+WorkspaceInput input_of(scene::Actuator& actuator, std::size_t index) {
   struct Visit {
-    Input operator()(scene::Cable& c) const {
+    WorkspaceInput operator()(scene::Cable& c) const {
       return {c.tension ? &*c.tension : &*c.displacement, c.limits.value_or(std::pair{NAN, NAN})};
     }
-    Input operator()(scene::Fluidic& f) const {
+    WorkspaceInput operator()(scene::Fluidic& f) const {
       return {f.pressure ? &*f.pressure : &*f.volume, f.limits.value_or(std::pair{NAN, NAN})};
     }
-    Input operator()(scene::Muscle& m) const { return {&m.input, m.limits.value_or(std::pair{NAN, NAN})}; }
+    WorkspaceInput operator()(scene::Muscle& m) const {
+      return {&m.input, m.limits.value_or(std::pair{NAN, NAN})};
+    }
   };
-  Input in = std::visit(Visit{}, actuator);
+  WorkspaceInput in = std::visit(Visit{}, actuator);
   if (std::isnan(in.limits.first))
     throw std::invalid_argument("actuators." + std::to_string(index) +
                                 ": the workspace needs `limits: [min, max]` on every actuator");
@@ -35,6 +30,32 @@ Input input_of(scene::Actuator& actuator, std::size_t index) {
 }
 
 }  // namespace
+
+std::vector<WorkspaceInput> workspace_inputs(scene::Scene& scene) {
+  if (scene.actuators.empty()) throw std::invalid_argument("the workspace needs actuators");
+  std::vector<WorkspaceInput> inputs;
+  for (std::size_t k = 0; k < scene.actuators.size(); ++k) inputs.push_back(input_of(scene.actuators[k], k));
+  return inputs;
+}
+
+double workspace_uniform(std::mt19937& rng, double lo, double hi) {
+  const double u = static_cast<double>(rng()) / static_cast<double>(std::mt19937::max());
+  return lo + u * (hi - lo);
+}
+
+WorkspaceBounds fit_workspace_bounds(std::span<const result::WorkspaceSample> samples) {
+  WorkspaceBounds b;
+  bool first = true;
+  for (const auto& sample : samples) {
+    if (!sample.converged) continue;
+    const auto& c = sample.coordinates;
+    b.omega_bound = first ? c.omega : std::max(b.omega_bound, c.omega);
+    b.eps_low = first ? c.epsilon : std::min(b.eps_low, c.epsilon);
+    b.eps_high = first ? c.epsilon : std::max(b.eps_high, c.epsilon);
+    first = false;
+  }
+  return b;
+}
 
 WorkspaceCoordinates workspace_coordinates(const Vector3& p, double L) {
   const double rho = std::hypot(p.x(), p.y());
@@ -62,12 +83,10 @@ bool workspace_contains(const WorkspaceBounds& b, const Vector3& p, double L, do
 
 result::WorkspaceResult sample_workspace(const scene::Scene& scene_in, const StaticSolveOptions& options,
                                          int samples, unsigned seed) {
-  if (scene_in.actuators.empty()) throw std::invalid_argument("the workspace needs actuators");
   if (samples < 1) throw std::invalid_argument("samples must be >= 1");
   const auto start = std::chrono::steady_clock::now();
   scene::Scene scene = scene_in;
-  std::vector<Input> inputs;
-  for (std::size_t k = 0; k < scene.actuators.size(); ++k) inputs.push_back(input_of(scene.actuators[k], k));
+  const std::vector<WorkspaceInput> inputs = workspace_inputs(scene);
 
   result::WorkspaceResult out;
   out.scene = scene.name;
@@ -77,13 +96,10 @@ result::WorkspaceResult sample_workspace(const scene::Scene& scene_in, const Sta
   out.seed = seed;
   std::mt19937 rng(seed);
   const lie::SE3 base_inv = scene.base.pose.inverse();
-  bool first = true;
   for (int i = 0; i < samples; ++i) {
     result::WorkspaceSample sample;
-    for (auto& in : inputs) {
-      // uniform in [lo, hi] from the raw generator (std distributions differ across platforms)
-      const double u = static_cast<double>(rng()) / static_cast<double>(std::mt19937::max());
-      const double v = in.limits.first + u * (in.limits.second - in.limits.first);
+    for (const auto& in : inputs) {
+      const double v = workspace_uniform(rng, in.limits.first, in.limits.second);
       *in.value = scene::ScalarSchedule(v);
       sample.inputs.push_back(v);
     }
@@ -91,18 +107,10 @@ result::WorkspaceResult sample_workspace(const scene::Scene& scene_in, const Sta
     sample.converged = r.converged;
     sample.tip = base_inv * r.centerline.back().pose.translation();
     sample.coordinates = workspace_coordinates(sample.tip, scene.rod.length);
-    if (sample.converged) {
-      auto& b = out.bounds;
-      const auto& c = sample.coordinates;
-      b.omega_bound = first ? c.omega : std::max(b.omega_bound, c.omega);
-      b.eps_low = first ? c.epsilon : std::min(b.eps_low, c.epsilon);
-      b.eps_high = first ? c.epsilon : std::max(b.eps_high, c.epsilon);
-      first = false;
-    } else {
-      ++out.failed;
-    }
+    if (!sample.converged) ++out.failed;
     out.samples.push_back(std::move(sample));
   }
+  out.bounds = fit_workspace_bounds(out.samples);
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
