@@ -9,8 +9,12 @@ DIR/data/NAME.csv and draws each of its figures to DIR/figures/FIGURE.svg, follo
 spec in report.json:
 
     kind      line | loglog | semilogy | semilogx | shape (equal axes) | map (x, y coloured by y[0]...)
+              | pareto (work-precision: loglog of y against x per series, style markers; the rows
+              whose `pareto` column is 1 joined as the Pareto front, those whose `recommended`
+              column is 1 starred)
     x, y      column names (one curve per y column)
-    series    optional column: one curve per distinct value (and per y column)
+    series    optional column: one curve per distinct value (and per y column); map: one
+              row of the map per distinct value (then y[1] is not needed)
     reference_slopes  loglog: dashed lines y ~ x^slope (e.g. -1, -2, -4 for errors against N)
     style     lines | markers | lines+markers
     absolute  plot |y| (signed errors on log axes)
@@ -133,14 +137,56 @@ def curves(table, spec):
     return out
 
 
+def draw_pareto(np, ax, table, spec):
+    """Work-precision: markers per series on log-log axes, the Pareto front (rows with
+    pareto = 1) as a line in order of x, the recommended rows (recommended = 1) starred."""
+    for label, x, y in curves(table, spec):
+        x, y = np.array(x, dtype=float), np.array(y, dtype=float)
+        keep = np.isfinite(x) & np.isfinite(y) & (x > 0) & (y > 0)
+        if keep.any():
+            ax.plot(x[keep], y[keep], "o", label=label, markersize=5, alpha=0.85)
+    xs = np.array(table[spec["x"]], dtype=float)
+    ys = np.array(table[spec["y"][0]], dtype=float)
+    for column, fmt, label in (("pareto", "k-", "Pareto front"),
+                               ("recommended", "k*", "recommended")):
+        if column not in table:
+            continue
+        flag = np.array(table[column], dtype=float) == 1
+        keep = flag & np.isfinite(xs) & np.isfinite(ys) & (xs > 0) & (ys > 0)
+        if not keep.any():
+            continue
+        order = np.argsort(xs[keep], kind="stable")
+        if column == "pareto":
+            ax.plot(xs[keep][order], ys[keep][order], fmt, linewidth=1.0, alpha=0.7,
+                    drawstyle="steps-post", label=label)
+        else:
+            ax.plot(xs[keep][order], ys[keep][order], fmt, markersize=14, fillstyle="none",
+                    label=label)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.legend(loc="best", fontsize=7)
+
+
 def draw(plt, np, table, spec):
     kind = spec.get("kind", "line")
     fig, ax = plt.subplots()
     if kind == "map":
-        x, y = np.array(table[spec["x"]]), np.array(table[spec["y"][1]])
-        z = np.array(table[spec["y"][0]])
+        x, z = np.array(table[spec["x"]]), np.array(table[spec["y"][0]])
+        if spec.get("series"):
+            keys = []
+            for k in table[spec["series"]]:
+                if k not in keys:
+                    keys.append(k)
+            y = np.array([keys.index(k) for k in table[spec["series"]]], dtype=float)
+            ax.set_yticks(range(len(keys)))
+            ax.set_yticklabels([str(k) for k in keys], fontsize=7)
+            ax.set_ylim(-0.5, len(keys) - 0.5)
+        else:
+            y = np.array(table[spec["y"][1]])
         sc = ax.scatter(x, y, c=z, cmap="viridis", s=60)
         fig.colorbar(sc, ax=ax, label=spec["y"][0])
+    elif kind == "pareto":
+        draw_pareto(np, ax, table, spec)
     else:
         style = spec.get("style", "lines")
         fmt = {"lines": "-", "markers": "o", "lines+markers": "o-"}.get(style, "-")

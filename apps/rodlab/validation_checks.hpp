@@ -57,10 +57,14 @@ struct Cell {
 /// How validation/make_figures.py draws one figure from a data set.
 struct FigureSpec {
   std::string name;   ///< file stem: figures/NAME.svg (unique over the report)
-  std::string kind;   ///< line | loglog | semilogy | semilogx | shape (equal axes) | map
+  /// line | loglog | semilogy | semilogx | shape (equal axes) | map | pareto (work-precision:
+  /// log-log markers per series, the rows whose `pareto` column is 1 joined as the front, those
+  /// whose `recommended` column is 1 starred)
+  std::string kind;
   std::string x;      ///< column on the horizontal axis
-  std::vector<std::string> y;  ///< one curve per column (map: exactly one, the colour value...)
-  std::string series;          ///< optional: one curve per distinct value of this column
+  /// One curve per column (map: y[0] the colour, y[1] the vertical axis unless series is set)
+  std::vector<std::string> y;
+  std::string series;  ///< optional: one curve (map: one row) per distinct value of this column
   std::string title, xlabel, ylabel;
   std::string caption;                  ///< what the reader sees, under the figure
   std::vector<double> reference_slopes; ///< loglog: dashed lines of these slopes
@@ -135,5 +139,11 @@ std::vector<Check> statics_checks(const ValidationContext& context);
 /// and with damping, det drift, the stability limit, the static limit, agreement between
 /// schemes and with the IDA reference.
 std::vector<Check> dynamics_checks(const ValidationContext& context);
+
+/// validation_study_checks.cpp: the studies (study_*.hpp) on example scenes: work-precision
+/// sweeps (statics, dynamics) with their Pareto fronts and `study recommend` answers checked
+/// against an independent reference (timings are reported, never gated), the stability map of
+/// the explicit scheme and the implicit schemes' step scans.
+std::vector<Check> study_checks(const ValidationContext& context);
 
 }  // namespace rodlab::cli

@@ -9,18 +9,19 @@ namespace rodlab::cli {
 
 std::span<const CheckFamily> check_families() {
   // Add a family here (and its function in its own file, declared in validation_checks.hpp).
-  // The studies of issue #5 (work-precision diagrams, stability maps; `rodlab study`) belong in
-  // a family of their own ("studies"): it runs the study functions (the slow ones only with
-  // context.full), states its checks, and emits each study's table as a DataSet with figures
-  // of kind loglog (work-precision: x = wall time, y = error, series = scheme, style markers)
-  // or map (stability: x = N, y = E, y[0] = the measured/computed limit).
-  static const std::array<CheckFamily, 3> families{{
+  static const std::array<CheckFamily, 4> families{{
       {"scenes", "example scenes load; derived quantities equal their closed forms", &scene_checks},
       {"statics", "statics schemes on the thesis's 2.7 problems and closed forms", &statics_checks},
       {"dynamics",
        "dynamics schemes on the Table 2.1 cantilever: bending frequency, energy with and without "
        "damping, det drift, stability limit, static limit, agreement between schemes and with IDA",
        &dynamics_checks},
+      {"studies",
+       "the studies of `rodlab study` on example scenes: work-precision diagrams (statics and "
+       "dynamics) with their Pareto fronts and `study recommend` answers verified against an "
+       "independent reference; the stability map of the explicit scheme and the implicit "
+       "schemes' step scans",
+       &study_checks},
   }};
   return families;
 }

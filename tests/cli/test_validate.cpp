@@ -3,11 +3,13 @@
 #include <boost/test/unit_test.hpp>
 
 // `rodlab validate --quick --out DIR` as `make validate` runs it (a few minutes, hence the
-// validation label): exit status 0; at least 20 checks over the scenes, statics and dynamics
-// families, all passed; every data set's CSV and (with python3-matplotlib) every figure exists;
-// index.html names every check and embeds every figure with its caption; report.json has the
-// provenance; the summary line printed equals report.json's. Then a run with an interpreter that
-// does not exist still writes the whole report, says the figures are unavailable, and exits
+// validation label): exit status 0; at least 20 checks over the scenes, statics, dynamics and
+// studies families, all passed (the studies: a recommendation for a statics and a dynamics
+// tolerance, two Pareto fronts); every data set's CSV and (with python3-matplotlib) every
+// figure exists; index.html names every check and embeds every figure with its caption (the
+// work-precision diagrams and the stability map among them); report.json has the provenance;
+// the summary line printed equals report.json's. Then a run with an interpreter that does not
+// exist still writes the whole report, says the figures are unavailable, and exits
 // with the checks' status (family scenes only, to keep it short).
 
 #include <sys/wait.h>
@@ -87,7 +89,21 @@ BOOST_AUTO_TEST_CASE(quick_suite_writes_the_whole_report) {
   BOOST_TEST(contains(r.out, summary), "printed: " << r.out);
   std::set<std::string> families;
   for (const auto& c : j["checks"]) families.insert(c["family"].get<std::string>());
-  BOOST_TEST((families == std::set<std::string>{"scenes", "statics", "dynamics"}));
+  BOOST_TEST((families == std::set<std::string>{"scenes", "statics", "dynamics", "studies"}));
+  // The studies family: recommend answers for a statics and a dynamics tolerance, the front.
+  int statics_recommends = 0, dynamics_recommends = 0, fronts = 0;
+  for (const auto& c : j["checks"]) {
+    if (c["family"] != "studies") continue;
+    const std::string name = c["name"];
+    if (contains(name, "recommended run, re-run")) {
+      (contains(name, "statics") ? statics_recommends : dynamics_recommends) += 1;
+      BOOST_TEST(contains(c["detail"].get<std::string>(), "recommendation: "), name);
+    }
+    if (contains(name, "Pareto front non-empty")) ++fronts;
+  }
+  BOOST_TEST(statics_recommends >= 1);
+  BOOST_TEST(dynamics_recommends >= 1);
+  BOOST_TEST(fronts == 2);
   for (const char* key : rodlab::cli::kProvenanceKeys) BOOST_TEST(j["provenance"].contains(key), key);
 
   const std::string html = read(dir / "index.html");
@@ -114,8 +130,11 @@ BOOST_AUTO_TEST_CASE(quick_suite_writes_the_whole_report) {
                  f["file"] << " embedded");
     }
   }
-  // The figures a reader expects: shapes, convergence, tips, energy, det, stability.
-  BOOST_TEST(n_figures >= 8);
+  // The figures a reader expects: shapes, convergence, tips, energy, det, stability,
+  // work-precision diagrams and the stability map.
+  BOOST_TEST(n_figures >= 11);
+  for (const char* f : {"studies_wp_statics", "studies_wp_dynamics", "studies_stability_map"})
+    BOOST_TEST(contains(html, std::string("id=\"figure-") + f + "\""), f);
   BOOST_TEST(!contains(html, " missing (figures"));
   BOOST_TEST(contains(read(dir / "report.md"), "](figures/statics_shapes.svg)"));
 }
