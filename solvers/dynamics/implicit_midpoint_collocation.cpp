@@ -32,8 +32,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   ImplicitMidpointCollocation(const DynamicProblem& problem,
                               const ImplicitMidpointCollocationOptions& options,
                               std::span<const SE3> g0)
-      : rod_(problem, options.nodes, "implicit-midpoint-collocation"),
-        kinsol_(rod_.pattern(false)) {
+      : rod_(problem, options.nodes, "implicit-midpoint-collocation", true),
+        kinsol_(rod_.kirchhoff() ? rod_.constrained_pattern() : rod_.pattern(false)) {
     if (!(options.tol > 0.0))
       throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");
     if (options.max_iterations < 1 || options.max_setup_calls < 1 || options.jacobian_max_age < 1)
@@ -41,14 +41,19 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
           "implicit-midpoint-collocation: max_iterations, max_setup_calls and jacobian_max_age "
           "must be >= 1");
     n_ = rod_.node_size();
+    nc_ = rod_.constraint_size();
     max_age_ = options.jacobian_max_age;
     max_setup_calls_ = options.max_setup_calls;
     y_ = rod_.rest_state(g0);
-    ym_ = y_.head(n_);
-    z_ = z0_ = trial_ = F_ = Vector::Zero(n_);
+    ym_ = y1_ = y_.head(n_);
+    z_ = z0_ = trial_ = F_ = Vector::Zero(n_ + nc_);
+    forces_ = Vector::Zero(nc_);
     k1_ = k2_ = Vector::Zero(n_);
     f_ = Vector::Zero(rod_.size());
     w_ = rod_.tolerance_scale().head(n_) * rod_.omega1();  // rate scale of each row
+    // Residual scaling: node rows as rates (1 / w), constraint rows (strains) by 1.
+    fs_ = Vector::Ones(n_ + nc_);
+    fs_.head(n_) = w_.cwiseInverse();
     const double omega_max = variational_max_frequency(problem.model(), options.nodes);
     const double floor = kRoundingFloor * std::numeric_limits<double>::epsilon() *
                          std::pow(omega_max / rod_.omega1(), 2);
@@ -56,14 +61,26 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     ko_.max_iterations = options.max_iterations;
     ko_.max_setup_calls = options.max_setup_calls;
     ko_.line_search = true;
-    ko_.f_scale = w_.cwiseInverse();
-    ko_.u_scale = Vector::Ones(n_);
-    cached_ = Vector::Zero(rod_.pattern(false).nonZeros());
+    ko_.f_scale = fs_;
+    ko_.u_scale = Vector::Ones(n_ + nc_);
+    cached_ = Vector::Zero(
+        (rod_.kirchhoff() ? rod_.constrained_pattern() : rod_.pattern(false)).nonZeros());
 
-    residual_ = [this](const ConstRef& z, Eigen::Ref<Vector> F) {
-      ym_ = y_.head(n_) + z;
-      rod_.rhs(h_, ym_, F);
-      F = a_ * z - F;
+    // Unknowns u = [z; f]: the half-step increment of the node rows and, for Kirchhoff rods,
+    // the step's mean constraint forces (3 per segment, N). Rows: the midpoint rule on the node
+    // rows with f in the stresses, then the constraint at the end of the step, c(y0 + 2 z) = 0
+    // (the midpoint analogue of SHAKE).
+    residual_ = [this](const ConstRef& u, Eigen::Ref<Vector> F) {
+      ym_ = y_.head(n_) + u.head(n_);
+      if (nc_ == 0) {
+        rod_.rhs(h_, ym_, F);
+        F = a_ * u - F;
+        return;
+      }
+      rod_.rhs(h_, ym_, u.tail(nc_), F.head(n_));
+      F.head(n_) = a_ * u.head(n_) - F.head(n_);
+      y1_ = y_.head(n_) + 2.0 * u.head(n_);
+      rod_.constraint(y1_, F.tail(nc_));
     };
     jacobian_ = [this](const ConstRef& z, const ConstRef&, KinsolSolver::SparseMatrix& J) {
       const bool reuse = jacobian_calls_ == 0 && cache_valid_;
@@ -75,8 +92,13 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
           for (int i = 0; i < n_; ++i) J.coeffRef(i, i) += a_ - cached_a_;
         return;
       }
-      ym_ = y_.head(n_) + z;
-      rod_.newton_matrix(h_, ym_, a_, 1.0, J);
+      ym_ = y_.head(n_) + z.head(n_);
+      if (nc_ == 0) {
+        rod_.newton_matrix(h_, ym_, a_, 1.0, J);
+      } else {
+        y1_ = y_.head(n_) + 2.0 * z.head(n_);
+        rod_.constrained_newton_matrix(h_, ym_, z.tail(nc_), a_, 1.0, y1_, 2.0, J);
+      }
       std::copy(J.valuePtr(), J.valuePtr() + cached_.size(), cached_.data());
       cached_a_ = a_;
       cache_valid_ = true;
@@ -120,19 +142,24 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     // midpoints) to this step's midpoint, the last mean rate, the explicit rate f(h, y0) and
     // no change. (Stiff modes, which the midpoint rule does not damp, flip sign every step at
     // large dt and spoil the extrapolation there.)
-    double best = residual_norm(z_.setZero());
+    // The constraint forces are predicted by the last step's.
+    z_.head(n_).setZero();
+    z_.tail(nc_) = forces_;
+    double best = residual_norm(z_);
     z0_ = z_;
+    trial_.tail(nc_) = forces_;
     auto consider = [&](const auto& candidate) {
-      trial_ = candidate;
+      trial_.head(n_) = candidate;
       const double r = residual_norm(trial_);
       if (r < best) best = r, z0_ = trial_;
     };
     if (history_ >= 2) consider((0.5 * dt) * (k1_ + ((dt + dt1_) / (dt1_ + dt2_)) * (k1_ - k2_)));
     if (history_ >= 1) consider((0.5 * dt) * k1_);
-    rod_.rhs(h_, y_, f_);
+    rate(y_, forces_);
     consider((0.5 * dt) * f_.head(n_));
     z_ = z0_;
-    ko_.u_scale = w_.cwiseInverse() * a_;
+    ko_.u_scale.head(n_) = w_.cwiseInverse() * a_;
+    ko_.u_scale.tail(nc_).setConstant(1.0 / rod_.force_scale());
 
     if (cache_valid_ && ++age_ > max_age_) cache_valid_ = false;
     ko_.max_setup_calls = max_setup_calls_;
@@ -142,7 +169,12 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     // iteration; the line search can stall in a local minimum of |F|), from the predictor and
     // then from the explicit rate.
     for (int attempt = 0; attempt < 2 && !s.converged; ++attempt) {
-      z_ = attempt == 0 ? z0_ : Vector((0.5 * dt) * f_.head(n_));
+      if (attempt == 0) {
+        z_ = z0_;
+      } else {
+        z_.head(n_) = (0.5 * dt) * f_.head(n_);
+        z_.tail(nc_) = forces_;
+      }
       cache_valid_ = false;
       ko_.max_setup_calls = 1;
       ko_.line_search = false;
@@ -164,15 +196,16 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     if (s.nonlinear_iterations > kSlowSolve) cache_valid_ = false;
 
     // Ledger powers at the midpoint, then y1 = y0 + 2 z.
-    ym_ = y_.head(n_) + z_;
-    rod_.rhs(h_, ym_, f_);
-    y_.head(n_) += 2.0 * z_;
+    ym_ = y_.head(n_) + z_.head(n_);
+    forces_ = z_.tail(nc_);
+    rate(ym_, forces_);
+    y_.head(n_) += 2.0 * z_.head(n_);
     y_[rod_.dissipated_index()] += dt * f_[rod_.dissipated_index()];
     y_[rod_.work_index()] += dt * f_[rod_.work_index()];
     rod_.set_state(y_);
 
     k2_.swap(k1_);
-    k1_ = a_ * z_;  // (y1 - y0) / dt
+    k1_ = a_ * z_.head(n_);  // (y1 - y0) / dt
     dt2_ = dt1_;
     dt1_ = dt;
     history_ = std::min(history_ + 1, 2);
@@ -200,9 +233,17 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
 
  private:
   /// max_i |F_i(z)| / w_i, the norm KINSOL tests.
-  double residual_norm(const Vector& z) {
-    residual_(z, F_);
-    return F_.cwiseQuotient(w_).cwiseAbs().maxCoeff();
+  double residual_norm(const Vector& u) {
+    residual_(u, F_);
+    return F_.cwiseProduct(fs_).cwiseAbs().maxCoeff();
+  }
+
+  /// f(h, y) (ledger rows included) into f_, with the constraint forces of a Kirchhoff rod.
+  void rate(const Vector& y, const Vector& forces) {
+    if (nc_ == 0)
+      rod_.rhs(h_, y, f_);
+    else
+      rod_.rhs(h_, y, forces, f_);
   }
 
   KinsolStats solve() {
@@ -215,8 +256,11 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   KinsolOptions ko_;
   KinsolSolver::Residual residual_;
   KinsolSolver::Jacobian jacobian_;
-  int n_ = 0;
+  int n_ = 0, nc_ = 0;  ///< node unknowns; constraint forces (Kirchhoff rods, else 0)
   Vector y_;           ///< state at t_ (nodes, D, W)
+  Vector y1_;          ///< end-of-step node rows (constraint rows)
+  Vector forces_;      ///< the last step's mean constraint forces (predictor)
+  Vector fs_;          ///< residual scaling (KINSOL's f_scale)
   Vector ym_, z_, z0_, f_;  ///< midpoint, half-step increment (and its prediction), f
   Vector trial_, F_;        ///< predictor candidates and their residual
   Vector w_;           ///< rate scale per node row, omega_1 tolerance_scale()

@@ -336,7 +336,7 @@ BOOST_AUTO_TEST_CASE(dynamic_writes_results_and_reports_instability) {
   const std::string bad = read(box.work / "b.json");
   BOOST_TEST(contains(bad, "\"converged\": false"));
   BOOST_TEST(contains(bad, "unstable"));
-  // ida and collocation do not support Kirchhoff rods yet (docs/dynamics.md): bad input
+  // ida does not support Kirchhoff rods yet (docs/dynamics.md): bad input
   expect_bad_input(box,
                    "dynamic " + scene + " --scheme ida --t-end 1e-3 --set rod.model=kirchhoff --out k.json",
                    {"kirchhoff", "not supported yet"});

@@ -25,7 +25,15 @@
 // than a few iterations, every `jacobian_max_age` steps, or when KINSOL asks again within a
 // solve (a stale Jacobian that fails is recomputed; the diagonal follows a change of dt).
 // A step that does not converge is a failed StepStatus with KINSOL's flag and the state is left
-// at t. Kirchhoff rods are not supported (std::invalid_argument), as in `ida`.
+// at t.
+//
+// Kirchhoff rods (nu = nu*): the unknowns are u = [z; f], f the step's mean constraint forces
+// (3 per segment, in the segments' stresses: semi_discrete_rod.hpp), and the residual gets the
+// constraint rows at the END of the step, c(y0 + 2 z) = 0 (the midpoint analogue of SHAKE):
+//   F = [ (2/dt) z - f(h, y0 + z; f) ;  c(y0 + 2 z) ],
+//   dF/du = [ (2/dt) I - df/dy   -df/df ;  2 dc/dy   0 ]   (finite differences, KLU).
+// f is scaled by E I / L^2, c by 1; f is predicted by the last step's. The initial poses are put
+// on the constraint (each segment keeps its rotation, nu = nu*).
 #include <memory>
 #include <span>
 

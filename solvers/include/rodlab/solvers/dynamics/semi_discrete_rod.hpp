@@ -35,8 +35,16 @@
 // with positions absolute (1 m): ida's absolute tolerances are atol * tolerance_scale(), and the
 // collocation scheme scales its residual and unknowns by it.
 //
-// Kirchhoff rods are not supported (std::invalid_argument): the constraint nu = nu* would need
-// algebraic constraint forces (an index-3 DAE), which this ODE does not carry.
+// Kirchhoff rods (nu = nu*) only with `constrained` (the collocation scheme; `ida` rejects them:
+// the constraint makes the system an index-3 DAE). Segment k then carries an unknown constraint
+// force f_k (3 per segment, world-free: the force part of the segment's stress) that the caller
+// supplies: sigma_k = [m-part of (3.10) at nu = nu*, nu_dot = 0; 0] + [0; f_k] (the rod's own
+// force part K_nu (nu - nu*) + V_nu nu_dot is dropped, actuators act as usual), so node k gets
+// + B_k f_k and node k + 1 gets - Ad^T_{G_k} B_k f_k, B_k = dexp^-T_{ds xi_k} [0; I]. The
+// constraint c_k(y) = nu(log(g_k^-1 g_(k+1))) / ds - nu* (3 per segment) is evaluated by
+// constraint(); the ledger uses the Kirchhoff strain rate (nu_dot = 0), the constraint forces
+// do no work on the constraint manifold. rest_state() puts the initial poses on the constraint
+// (each segment keeps its rotation and gets nu = nu*).
 #include <span>
 #include <string>
 #include <vector>
@@ -60,9 +68,10 @@ class SemiDiscreteRod {
   static constexpr int kBlock = 13;
   static constexpr int kP = 0, kQ = 3, kEta = 7;
 
-  /// `who` names the scheme in error messages. Throws std::invalid_argument for nodes < 3 and
-  /// Kirchhoff rods. The problem must outlive this object.
-  SemiDiscreteRod(const DynamicProblem& problem, int nodes, const std::string& who);
+  /// `who` names the scheme in error messages. Throws std::invalid_argument for nodes < 3 and,
+  /// unless `constrained`, Kirchhoff rods. The problem must outlive this object.
+  SemiDiscreteRod(const DynamicProblem& problem, int nodes, const std::string& who,
+                  bool constrained = false);
 
   const DynamicProblem& problem() const { return P_; }
   int nodes() const { return n_; }
@@ -78,6 +87,12 @@ class SemiDiscreteRod {
   Vector tolerance_scale() const;
   /// omega_1 [rad/s], the characteristic rate of the gross motion.
   double omega1() const { return omega1_; }
+  /// A Kirchhoff rod (constrained construction only): constraint forces and constraint rows.
+  bool kirchhoff() const { return kirchhoff_; }
+  /// 3 (N - 1) for a Kirchhoff rod (one force / constraint triple per segment), else 0.
+  int constraint_size() const { return kirchhoff_ ? 3 * (n_ - 1) : 0; }
+  /// E I / L^2 [N], the characteristic constraint force.
+  double force_scale() const { return force_scale_; }
 
   /// y at rest at the node poses g0 (base first, nodes() of them), D = W = 0. Throws
   /// std::invalid_argument for a wrong count.
@@ -86,6 +101,10 @@ class SemiDiscreteRod {
   /// f(t, y) of y' = f(t, y): y and f of size() (node_size() is enough for y: D and W are not
   /// read), f of size() (ledger rows included) or node_size() (node rows only).
   void rhs(double t, const ConstRef& y, Eigen::Ref<Vector> f) const;
+  /// The same with the constraint forces `forces` (constraint_size(), N) of a Kirchhoff rod.
+  void rhs(double t, const ConstRef& y, const ConstRef& forces, Eigen::Ref<Vector> f) const;
+  /// c_k(y) = nu(log(g_k^-1 g_(k+1))) / ds - nu* into c (constraint_size()), Kirchhoff rods.
+  void constraint(const ConstRef& y, Eigen::Ref<Vector> c) const;
 
   /// Structural pattern of a Newton matrix a I - b df/dy: block tridiagonal node blocks and, with
   /// the ledger, the two ledger rows over every node column and the ledger diagonal.
@@ -94,6 +113,17 @@ class SemiDiscreteRod {
   /// J = a I - b df/dy at (t, y) by coloured finite differences, on a matrix with the pattern of
   /// pattern(J.rows() == size()) (values overwritten; y of size() or node_size()).
   void newton_matrix(double t, const ConstRef& y, double a, double b, SparseMatrix& J) const;
+
+  /// Kirchhoff rods: the pattern of the constrained Newton matrix (node_size() +
+  /// constraint_size() square, no ledger)
+  ///   [ a I - b df/dy (t, y, forces)   - b df/dforces ]   rows: node rows, then c_k
+  ///   [ cy dc/dy (y_c)                  0              ]   columns: node unknowns, then f_k
+  /// (c_k sees p, q of nodes k and k + 1; f_k the eta rows of nodes k and k + 1).
+  SparseMatrix constrained_pattern() const;
+  /// Fills that matrix by coloured finite differences (three node colours for the node
+  /// columns, perturbing y and y_c together; two segment colours for the forces).
+  void constrained_newton_matrix(double t, const ConstRef& y, const ConstRef& forces, double a,
+                                 double b, const ConstRef& y_c, double cy, SparseMatrix& J) const;
 
   /// Poses, velocities and strains of y for the reports below (y: size() or node_size()).
   void set_state(const ConstRef& y) const;
@@ -106,11 +136,15 @@ class SemiDiscreteRod {
  private:
   void unpack_nodes(const double* y) const;
   /// f of the node rows into f (node_size()); the ledger powers into diss, work.
-  void evaluate(double t, const double* y, double* f, double& diss, double& work) const;
+  void evaluate(double t, const double* y, double* f, double& diss, double& work,
+                const double* forces = nullptr) const;
+  void constraint(const double* y, double* c) const;
 
   const DynamicProblem& P_;
   int n_;
-  double ds_ = 0.0, omega1_ = 0.0;
+  double ds_ = 0.0, omega1_ = 0.0, force_scale_ = 1.0;
+  bool kirchhoff_ = false;
+  Vector3 nu_star_ = Vector3::Zero();
   int dim_ = 0, iD_ = 0, iW_ = 0;
   Vector6 M_, V_;
   Vector scale_;
@@ -120,7 +154,7 @@ class SemiDiscreteRod {
   mutable std::vector<Vector6> eta_, xi_, xi_dot_, lambda_, moved_;
   mutable std::vector<double> seg_diss_, seg_work_, node_diss_, node_work_;
   // Finite-difference work arrays.
-  mutable Vector f0_, f1_, ytmp_;
+  mutable Vector f0_, f1_, ytmp_, yctmp_, c0_, c1_, ftmp_;
   mutable std::vector<double> seg0_diss_, seg0_work_, node0_diss_, node0_work_;
 };
 
