@@ -769,7 +769,7 @@ result::StaticResult solve_chebyshev(const StaticProblem& problem, const Chebysh
     throw std::invalid_argument("chebyshev: " + std::to_string(options.elements) +
                                 " elements need more than " + std::to_string(options.nodes) + " nodes");
   if (problem.has_actuators())
-    throw std::invalid_argument("the chebyshev scheme does not support actuators yet; use an rkmk-* scheme");
+    throw std::invalid_argument("the chebyshev scheme does not support actuators yet; use kinsol or an rkmk-* scheme");
   return ChebyshevSolver(problem, options).run(report);
 }
 

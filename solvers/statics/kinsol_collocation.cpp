@@ -1,9 +1,12 @@
 #include "rodlab/solvers/statics/kinsol_collocation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
@@ -26,67 +29,114 @@ constexpr int kState = 13;
 constexpr int kBaseRows = 7;
 constexpr int kTipRows = 6;
 
-/// What the interval rows need of a node, computed once per node and evaluation.
-struct NodeData {
-  Quaternion q;       // the unknown quaternion (norm enforced by a row)
-  SO3 R;              // rotation of q / |q|
-  Vector3 p;
-  Vector6 Lambda, xi, dLambda;  // xi = strain(Lambda), dLambda = (2.34)
+/// One side of a node: the wrench, strain and (2.34) seen by the interval on that side. They
+/// differ only at a breakpoint: a cable entering there adds its pull to Lambda (strain
+/// continuous), and a span end or routing knot changes the actuators in the strain law.
+struct Side {
+  Vector6 Lambda, xi, dLambda;
 };
+
+/// What the interval rows need of a node, computed once per node and evaluation. The unknown
+/// Lambda of a node is its left value (before a cable entry); `right` adds the entry jump.
+struct NodeData {
+  Quaternion q;  // the unknown quaternion (norm enforced by a row)
+  SO3 R;         // rotation of q / |q|
+  Vector3 p;
+  Side left, right;
+};
+
+using Lengths = std::array<double, StaticProblem::kMaxActuators>;
 
 class Collocation {
  public:
   Collocation(const StaticProblem& problem, int nodes)
-      : P_(problem), N_(nodes), L_(problem.length()), h_(L_ / (nodes - 1)), node_(nodes),
-        rows_(nodes - 1) {
+      : P_(problem), N_(nodes), L_(problem.length()), extra_(problem.extra_unknowns()), node_(nodes),
+        rows_(nodes - 1), lengths_(nodes - 1) {
     scale_.head<4>().setOnes();
     scale_.segment<3>(4).setConstant(L_);
     scale_.tail<6>() = P_.wrench_scale();
+    build_mesh();
   }
 
   StaticProblem& problem() { return P_; }
   const StaticProblem& problem() const { return P_; }
   int nodes() const { return N_; }
-  int size() const { return kState * N_; }
+  int extra() const { return extra_; }
+  int size() const { return kState * N_ + extra_; }
+  double s(int i) const { return s_[i]; }
 
-  /// Node i's data from the scaled unknowns x.
-  NodeData node(const ConstRef& x, int i) const { return node_from(x.segment<kState>(kState * i)); }
+  /// Node i's data from the scaled unknowns x (the extra unknowns must be set in P_).
+  NodeData node(const ConstRef& x, int i) const { return node_from(x.segment<kState>(kState * i), i); }
 
-  NodeData node_from(const State& xi_scaled) const {
+  Vector6 strain_at(const Vector6& Lambda, double s, StaticProblem::Mask mask) const {
+    return mask ? P_.strain(Lambda, s, mask) : P_.strain(Lambda);
+  }
+
+  NodeData node_from(const State& xi_scaled, int i) const {
     NodeData n;
     n.q = Quaternion(xi_scaled[0], xi_scaled[1], xi_scaled[2], xi_scaled[3]);
     n.R = SO3::from_quaternion(n.q);
     n.p = L_ * xi_scaled.segment<3>(4);
-    n.Lambda = xi_scaled.tail<6>().cwiseProduct(scale_.tail<6>());
-    n.xi = P_.strain(n.Lambda);
-    n.dLambda = P_.wrench_derivative(n.R, n.xi, n.Lambda);  // (2.34)
+    const Vector6 Lambda = xi_scaled.tail<6>().cwiseProduct(scale_.tail<6>());
+    const auto mask_right = mask_[std::min(i, N_ - 2)];
+    auto side = [&](const Vector6& W, double s, StaticProblem::Mask mask) {
+      Side d;
+      d.Lambda = W;
+      d.xi = strain_at(W, s, mask);
+      d.dLambda = P_.wrench_derivative(n.R, d.xi, W);  // (2.34)
+      return d;
+    };
+    if (!breakpoint_[i]) {
+      // At the tip, the left limit of the routing's r' (the path gives right limits).
+      n.left = n.right = side(Lambda, i == N_ - 1 ? s_[i] - 1e-12 * L_ : s_[i], mask_right);
+    } else {
+      // One-sided evaluation: the routing's r' jumps at a knot (the path gives right limits).
+      n.left = side(Lambda, s_[i] - 1e-12 * L_, mask_[i - 1]);
+      n.right = side(Lambda + P_.entry_jump(s_[i], n.left.xi), s_[i], mask_right);
+    }
     return n;
   }
 
-  /// The 13 scaled rows of the interval from node a to node b (see the header):
+  /// The 13 scaled rows of interval i, from node a to node b (see the header):
   /// Hermite-Simpson (Lobatto IIIA) on the chart ODE Theta' = dexp^-1_{-Theta} xi (2.84),
   /// Lambda' = ad_xi^T Lambda - W_bar(R_a exp(Theta)), Theta(0) = 0, Theta(h) = log(g_a^-1 g_b).
-  Rows interval(const NodeData& a, const NodeData& b) const {
+  /// With actuators the strain is the tendon law with the interval's active set, and `lengths`
+  /// (if given) receives the Simpson quadrature of each active path's length rate (the
+  /// scheme's own quadrature: order 4).
+  Rows interval(int i, const NodeData& a, const NodeData& b, Lengths* lengths = nullptr) const {
+    const double h = h_[i];
+    const Side& A = a.right;
+    const Side& B = b.left;
     const SO3 R_ab = a.R.inverse() * b.R;
     const Vector3 phi = R_ab.log();
     Vector6 Theta;
     Theta << phi, lie::so3::dexp_inv_apply(phi, a.R.inverse() * Vector3(b.p - a.p));
-    const Vector6 F_a = a.xi;  // dexp^-1_0 = I
-    const Vector6 F_b = lie::se3::dexp_inv_apply(-Theta, b.xi);
+    const Vector6 F_a = A.xi;  // dexp^-1_0 = I
+    const Vector6 F_b = lie::se3::dexp_inv_apply(-Theta, B.xi);
     // Midpoint stage from the cubic Hermite interpolants (compressed form).
-    const Vector6 Theta_m = 0.5 * Theta + (h_ / 8.0) * (F_a - F_b);
-    const Vector6 Lambda_m = 0.5 * (a.Lambda + b.Lambda) + (h_ / 8.0) * (a.dLambda - b.dLambda);
-    const Vector6 xi_m = P_.strain(Lambda_m);
+    const Vector6 Theta_m = 0.5 * Theta + (h / 8.0) * (F_a - F_b);
+    const Vector6 Lambda_m = 0.5 * (A.Lambda + B.Lambda) + (h / 8.0) * (A.dLambda - B.dLambda);
+    const double s_m = s_[i] + 0.5 * h;
+    const Vector6 xi_m = strain_at(Lambda_m, s_m, mask_[i]);
     const SO3 R_m = a.R * SO3::exp(Theta_m.head<3>());
     const Vector6 F_m = lie::se3::dexp_inv_apply(-Theta_m, xi_m);
     const Vector6 dLambda_m = P_.wrench_derivative(R_m, xi_m, Lambda_m);
-    const Vector6 pose = Theta - (h_ / 6.0) * (F_a + 4.0 * F_m + F_b);
-    const Vector6 wrench = (b.Lambda - a.Lambda) - (h_ / 6.0) * (a.dLambda + 4.0 * dLambda_m + b.dLambda);
+    const Vector6 pose = Theta - (h / 6.0) * (F_a + 4.0 * F_m + F_b);
+    const Vector6 wrench = (B.Lambda - A.Lambda) - (h / 6.0) * (A.dLambda + 4.0 * dLambda_m + B.dLambda);
     Rows r;
-    r.head<3>() = (L_ / h_) * pose.head<3>();     // rad per unit s/L
-    r.segment<3>(3) = pose.tail<3>() / h_;         // m per m
-    r.segment<6>(6) = (L_ / h_) * wrench.cwiseQuotient(scale_.tail<6>());
+    r.head<3>() = (L_ / h) * pose.head<3>();     // rad per unit s/L
+    r.segment<3>(3) = pose.tail<3>() / h;         // m per m
+    r.segment<6>(6) = (L_ / h) * wrench.cwiseQuotient(scale_.tail<6>());
     r[12] = b.q.squaredNorm() - 1.0;
+    if (lengths) {
+      lengths->fill(0.0);
+      const auto& acts = P_.actuators();
+      const double sa = s_[i] + 1e-12 * L_, sb = s_[i + 1] - 1e-12 * L_;
+      for (std::size_t k = 0; k < acts.size(); ++k)
+        if ((mask_[i] >> k) & 1U)
+          (*lengths)[k] = (h / 6.0) * (acts[k].path.length_rate(sa, A.xi) + 4.0 * acts[k].path.length_rate(s_m, xi_m) +
+                                       acts[k].path.length_rate(sb, B.xi));
+    }
     return r;
   }
 
@@ -97,23 +147,41 @@ class Collocation {
       const Quaternion e = target.rotation().quaternion().conjugate() * n.R.quaternion();
       return lie::se3::join(2.0 * e.vec(), (n.p - target.translation()) / L_);
     }
-    return P_.tip_residual(SE3(n.R, n.p), n.Lambda);
+    return P_.tip_residual(SE3(n.R, n.p), n.left.Lambda);
+  }
+
+  /// Sets the extra unknowns (actuator forces or muscle lengths) of x in the problem.
+  void set_extra(const ConstRef& x) {
+    if (extra_) P_.set_extra_unknowns(std::span<const double>(x.data() + kState * N_, extra_));
   }
 
   void residual(const ConstRef& x, Ref F) {
+    set_extra(x);
     for (int i = 0; i < N_; ++i) node_[i] = node(x, i);
     base_rows(x, F);
-    for (int i = 0; i + 1 < N_; ++i) F.segment<kState>(kBaseRows + kState * i) = interval(node_[i], node_[i + 1]);
-    F.tail<kTipRows>() = tip_rows(node_[N_ - 1]);
+    Lengths total{};
+    for (int i = 0; i + 1 < N_; ++i) {
+      F.segment<kState>(kBaseRows + kState * i) = interval(i, node_[i], node_[i + 1], extra_ ? &lengths_[i] : nullptr);
+      if (extra_)
+        for (int k = 0; k < StaticProblem::kMaxActuators; ++k) total[k] += lengths_[i][k];
+    }
+    F.segment<kTipRows>(kState * N_ - kTipRows) = tip_rows(node_[N_ - 1]);
+    if (extra_) P_.extra_residuals(total, std::span<double>(F.data() + kState * N_, extra_));
   }
 
-  /// Block-bidiagonal pattern: the columns of node j have the rows [first_row(j), last_row(j)].
+  /// Block-bidiagonal pattern: the columns of node j have the rows [first_row(j), last_row(j)]
+  /// and the extra rows (path-length conditions); the extra columns are dense.
   Sparse pattern() const {
     std::vector<Eigen::Triplet<double>> t;
-    t.reserve(static_cast<std::size_t>(kState) * kState * 2 * N_ + kState * (kBaseRows + kTipRows));
+    t.reserve(static_cast<std::size_t>(kState) * (kState * 2 + extra_) * N_ + kState * (kBaseRows + kTipRows) +
+              static_cast<std::size_t>(extra_) * size());
     for (int j = 0; j < N_; ++j)
-      for (int c = kState * j; c < kState * (j + 1); ++c)
+      for (int c = kState * j; c < kState * (j + 1); ++c) {
         for (int r = first_row(j); r <= last_row(j); ++r) t.emplace_back(r, c, 1.0);
+        for (int r = kState * N_; r < size(); ++r) t.emplace_back(r, c, 1.0);
+      }
+    for (int c = kState * N_; c < size(); ++c)
+      for (int r = 0; r < size(); ++r) t.emplace_back(r, c, 1.0);
     Sparse J(size(), size());
     J.setFromTriplets(t.begin(), t.end());
     J.makeCompressed();
@@ -121,13 +189,23 @@ class Collocation {
   }
 
   /// Forward differences node by node: a column of node j re-evaluates node j's data and the
-  /// (at most two) intervals, base or tip rows it enters; the base rows are exact.
+  /// (at most two) intervals, base or tip rows it enters; the base rows are exact. An extra
+  /// unknown's column re-evaluates the whole residual.
   void jacobian(const ConstRef& x, Sparse& J) {
+    set_extra(x);
     for (int i = 0; i < N_; ++i) node_[i] = node(x, i);
-    for (int i = 0; i + 1 < N_; ++i) rows_[i] = interval(node_[i], node_[i + 1]);
+    Lengths total{};
+    for (int i = 0; i + 1 < N_; ++i) {
+      rows_[i] = interval(i, node_[i], node_[i + 1], extra_ ? &lengths_[i] : nullptr);
+      if (extra_)
+        for (int k = 0; k < StaticProblem::kMaxActuators; ++k) total[k] += lengths_[i][k];
+    }
+    std::vector<double> extra0(extra_), extra1(extra_);
+    if (extra_) P_.extra_residuals(total, extra0);
     const Vector6 tip0 = tip_rows(node_[N_ - 1]);
     double* values = J.valuePtr();
     const int* outer = J.outerIndexPtr();
+    Lengths dl{};
     for (int j = 0; j < N_; ++j) {
       const State xj = x.segment<kState>(kState * j);
       for (int k = 0; k < kState; ++k) {
@@ -136,47 +214,78 @@ class Collocation {
         State xp = xj;
         xp[k] += kFdStep * std::max(1.0, std::abs(xj[k]));
         const double step = xp[k] - xj[k];  // the step actually taken
-        const NodeData np = node_from(xp);
+        const NodeData np = node_from(xp, j);
+        Lengths changed = total;
         if (j == 0)
           for (int r = 0; r < kBaseRows; ++r) *v++ = r == k ? 1.0 : 0.0;
         if (j >= 1) {  // interval j-1: node j is its right end
-          const Rows d = (interval(node_[j - 1], np) - rows_[j - 1]) / step;
+          const Rows d = (interval(j - 1, node_[j - 1], np, extra_ ? &dl : nullptr) - rows_[j - 1]) / step;
           for (int r = 0; r < kState; ++r) *v++ = d[r];
+          if (extra_)
+            for (int a = 0; a < StaticProblem::kMaxActuators; ++a) changed[a] += dl[a] - lengths_[j - 1][a];
         }
         if (j + 1 < N_) {  // interval j: node j is its left end
-          const Rows d = (interval(np, node_[j + 1]) - rows_[j]) / step;
+          const Rows d = (interval(j, np, node_[j + 1], extra_ ? &dl : nullptr) - rows_[j]) / step;
           for (int r = 0; r < kState; ++r) *v++ = d[r];
+          if (extra_)
+            for (int a = 0; a < StaticProblem::kMaxActuators; ++a) changed[a] += dl[a] - lengths_[j][a];
         }
         if (j == N_ - 1) {
           const Vector6 d = (tip_rows(np) - tip0) / step;
           for (int r = 0; r < kTipRows; ++r) *v++ = d[r];
         }
+        if (extra_) {
+          P_.extra_residuals(changed, extra1);
+          for (int r = 0; r < extra_; ++r) *v++ = (extra1[r] - extra0[r]) / step;
+        }
       }
+    }
+    if (extra_) {
+      VectorXd F0(size()), F1(size());
+      residual(x, F0);
+      VectorXd xp = x;
+      for (int e = 0; e < extra_; ++e) {
+        const int column = kState * N_ + e;
+        const double x0 = x[column];
+        xp[column] = x0 + kFdStep * std::max(1.0, std::abs(x0));
+        const double step = xp[column] - x0;
+        residual(xp, F1);
+        xp[column] = x0;
+        double* v = values + outer[column];
+        for (int r = 0; r < size(); ++r) *v++ = (F1[r] - F0[r]) / step;
+      }
+      set_extra(x);
     }
   }
 
   /// The reference configuration g(s) = base exp(s xi*) with, for a free tip, the undeformed
-  /// rod's equilibrium wrench ((2.34) marched back from the tip with RK4 along it); zero wrench
-  /// for a clamped tip (its reaction is unknown; zero keeps the pose rows exact). Scaled unknowns.
-  VectorXd reference_guess() const {
+  /// rod's equilibrium wrench ((2.34) marched back from the tip with RK4 along it, minus the
+  /// pull of cables entering at breakpoints); zero wrench for a clamped tip (its reaction is
+  /// unknown; zero keeps the pose rows exact). Extra unknowns at their initial guess. Scaled.
+  VectorXd reference_guess() {
     const Vector6& xi_star = P_.model().xi_star();
     const SE3& base = P_.base();
+    VectorXd x(size());
+    const auto z = P_.extra_initial_guess();
+    for (int e = 0; e < extra_; ++e) x[kState * N_ + e] = z[e];
+    set_extra(x);
     auto rotation_at = [&](double s) { return base.rotation() * SO3::exp(s * Vector3(xi_star.head<3>())); };
     auto dLambda = [&](double s, const Vector6& Lambda) {
       return P_.wrench_derivative(rotation_at(s), xi_star, Lambda);
     };
     const bool march = !P_.tip_clamped();
     Vector6 Lambda = march ? P_.tip_load(rotation_at(L_)) : Vector6::Zero();
-    VectorXd x(size());
     for (int i = N_ - 1; i >= 0; --i) {
-      const double s = i * h_;
+      const double s = s_[i];
       if (march && i < N_ - 1) {  // classical RK4 from s + h back to s
-        const double sb = s + h_;
+        const double h = h_[i];
+        const double sb = s_[i + 1];
         const Vector6 k1 = dLambda(sb, Lambda);
-        const Vector6 k2 = dLambda(sb - 0.5 * h_, Lambda - 0.5 * h_ * k1);
-        const Vector6 k3 = dLambda(sb - 0.5 * h_, Lambda - 0.5 * h_ * k2);
-        const Vector6 k4 = dLambda(s, Lambda - h_ * k3);
-        Lambda -= h_ * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0;
+        const Vector6 k2 = dLambda(sb - 0.5 * h, Lambda - 0.5 * h * k1);
+        const Vector6 k3 = dLambda(sb - 0.5 * h, Lambda - 0.5 * h * k2);
+        const Vector6 k4 = dLambda(s, Lambda - h * k3);
+        Lambda -= h * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0;
+        if (breakpoint_[i]) Lambda -= P_.entry_jump(s, xi_star);
       }
       x.segment<kState>(kState * i) = scaled(i == 0 ? base : base * SE3::exp(s * xi_star), Lambda);
     }
@@ -187,13 +296,15 @@ class Collocation {
   /// base and target (the reference configuration when the target is the reference tip), with
   /// Lambda = K (xi_c - xi*). It is the exact answer for targets on a constant-strain arc, and
   /// away from the straight rod, where a Kirchhoff rod's axial force is indeterminate.
-  VectorXd geodesic_guess() const {
+  VectorXd geodesic_guess() {
     const SE3& base = P_.base();
     const Vector6 xi_c = (base.inverse() * P_.tip_target()).log() / L_;
     const Vector6 Lambda = P_.rod_wrench(xi_c);
     VectorXd x(size());
+    const auto z = P_.extra_initial_guess();
+    for (int e = 0; e < extra_; ++e) x[kState * N_ + e] = z[e];
     for (int i = 0; i < N_; ++i)
-      x.segment<kState>(kState * i) = scaled(i == 0 ? base : base * SE3::exp(i * h_ * xi_c), Lambda);
+      x.segment<kState>(kState * i) = scaled(i == 0 ? base : base * SE3::exp(s_[i] * xi_c), Lambda);
     return x;
   }
 
@@ -208,15 +319,70 @@ class Collocation {
   /// Below this max norm a residual is at the rounding level of the rows (differences of O(1)
   /// unknowns divided by h / L, and the unknowns' own size).
   double rounding_floor(const ConstRef& x) const {
-    return 64.0 * std::numeric_limits<double>::epsilon() * (N_ - 1) *
+    return 64.0 * std::numeric_limits<double>::epsilon() * (L_ / h_min_) *
            std::max(1.0, x.lpNorm<Eigen::Infinity>());
   }
 
  private:
   static constexpr double kFdStep = 1.5e-8;  // ~ sqrt(eps), relative to max(1, |x|)
 
+  /// Nodes at every breakpoint: the N - 1 intervals are shared among the stretches between
+  /// breakpoints in proportion to their lengths (at least one each), uniform within a stretch.
+  /// Without breakpoints the mesh is uniform, s_i = i L / (N - 1).
+  void build_mesh() {
+    std::vector<double> cuts{0.0};
+    for (double b : P_.breakpoints()) cuts.push_back(b);
+    cuts.push_back(L_);
+    const int stretches = static_cast<int>(cuts.size()) - 1;
+    const int intervals = N_ - 1;
+    if (intervals < stretches)
+      throw std::invalid_argument("kinsol: " + std::to_string(N_) + " nodes cannot hold the " +
+                                  std::to_string(stretches - 1) + " actuator breakpoints (need at least " +
+                                  std::to_string(stretches + 1) + ")");
+    std::vector<double> ideal(stretches);
+    std::vector<int> count(stretches);
+    int total = 0;
+    for (int k = 0; k < stretches; ++k) {
+      ideal[k] = (cuts[k + 1] - cuts[k]) / L_ * intervals;
+      count[k] = std::max(1, static_cast<int>(std::floor(ideal[k])));
+      total += count[k];
+    }
+    while (total > intervals) {  // take from the most over-served stretch that can spare one
+      int best = -1;
+      for (int k = 0; k < stretches; ++k)
+        if (count[k] > 1 && (best < 0 || count[k] - ideal[k] > count[best] - ideal[best])) best = k;
+      --count[best];
+      --total;
+    }
+    while (total < intervals) {  // give to the most under-served stretch
+      int best = 0;
+      for (int k = 1; k < stretches; ++k)
+        if (ideal[k] - count[k] > ideal[best] - count[best]) best = k;
+      ++count[best];
+      ++total;
+    }
+    s_.assign(N_, 0.0);
+    h_.assign(N_ - 1, 0.0);
+    mask_.assign(N_ - 1, 0U);
+    breakpoint_.assign(N_, false);
+    int i = 0;
+    h_min_ = L_;
+    for (int k = 0; k < stretches; ++k) {
+      const double a = cuts[k], h = (cuts[k + 1] - a) / count[k];
+      h_min_ = std::min(h_min_, h);
+      const auto mask = P_.has_actuators() ? P_.active_mask(a + 0.5 * h) : 0U;
+      breakpoint_[i] = k > 0;
+      for (int c = 0; c < count[k]; ++c, ++i) {
+        s_[i] = c == 0 ? a : a + c * h;
+        h_[i] = h;
+        mask_[i] = mask;
+      }
+    }
+    s_[N_ - 1] = L_;
+  }
+
   int first_row(int j) const { return j == 0 ? 0 : kBaseRows + kState * (j - 1); }
-  int last_row(int j) const { return j == N_ - 1 ? size() - 1 : kBaseRows + kState * (j + 1) - 1; }
+  int last_row(int j) const { return j == N_ - 1 ? kState * N_ - 1 : kBaseRows + kState * (j + 1) - 1; }
 
   void base_rows(const ConstRef& x, Ref F) const {
     const Quaternion& qb = P_.base().rotation().quaternion();
@@ -229,10 +395,16 @@ class Collocation {
 
   StaticProblem P_;
   int N_;
-  double L_, h_;
+  double L_;
+  int extra_;
+  double h_min_ = 0.0;
   State scale_;
+  std::vector<double> s_, h_;                 // node positions; interval lengths
+  std::vector<StaticProblem::Mask> mask_;     // per interval: its active actuators
+  std::vector<bool> breakpoint_;              // per node: at a breakpoint (never 0 or L)
   std::vector<NodeData> node_;  // workspace: node data at the current x
   std::vector<Rows> rows_;      // workspace: interval rows at the current x
+  std::vector<Lengths> lengths_;  // workspace: interval path-length quadratures at the current x
 };
 
 class Driver {
@@ -372,9 +544,9 @@ class Driver {
     for (int i = 0; i < N; ++i) {
       const NodeData n = C_.node(x, i);
       q_error = std::max(q_error, std::abs(n.q.norm() - 1.0));
-      s[i] = P.length() * i / (N - 1);
+      s[i] = P.breakpoints().empty() ? P.length() * i / (N - 1) : C_.s(i);
       g[i] = SE3(n.R, n.p);
-      Lambda[i] = n.Lambda;
+      Lambda[i] = i + 1 < N ? n.right.Lambda : n.left.Lambda;  // as shooting: after an entry
     }
     auto& out = report_.result;
     fill_static_result(P, s, g, Lambda, out);
@@ -384,10 +556,26 @@ class Driver {
     out.reason = reason;
     out.iterations = static_cast<int>(report_.nonlinear_iterations);
     out.residual_norm = F.lpNorm<Eigen::Infinity>();
+    check_cables_taut(P, out);
     out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report_.max_quaternion_norm_error = q_error;
     report_.strategy = strategy;
     return report_;
+  }
+
+  /// A displacement-controlled cable that needs a negative tension would have to push: it goes
+  /// slack instead, which this model does not represent (as in shooting).
+  static void check_cables_taut(const StaticProblem& P, result::StaticResult& out) {
+    for (std::size_t k = 0; k < P.actuators().size(); ++k) {
+      const auto& a = P.actuators()[k];
+      if (a.kind != ActuatorKind::cable || !a.target_length) continue;
+      const double T = P.axial_force(static_cast<int>(k));
+      if (T < 0.0 && out.converged) {
+        out.converged = false;
+        out.reason = "cable " + std::to_string(k) + " would need a compressive force (" + std::to_string(T) +
+                     " N) to reach its displacement: it goes slack";
+      }
+    }
   }
 
   static constexpr int kDirectIterations = 15;    // Newton inside its basin needs fewer
@@ -410,8 +598,6 @@ KinsolCollocationReport solve_kinsol_collocation_report(const StaticProblem& pro
     throw std::invalid_argument("kinsol: tol and step_tol must be > 0 and max_iterations >= 1");
   if (!options.direct && !options.continuation)
     throw std::invalid_argument("kinsol: direct and continuation cannot both be off");
-  if (problem.has_actuators())
-    throw std::invalid_argument("kinsol: actuators are not supported by the collocation yet");
   return Driver(problem, options).run();
 }
 

@@ -3,9 +3,10 @@
 // solved at once by SUNDIALS KINSOL (Newton with a line search) with a sparse KLU Jacobian.
 //
 // Scheme: Runge-Kutta-Munthe-Kaas with the 3-stage Lobatto IIIA tableau (Hermite-Simpson),
-// written as a collocation. N uniform nodes s_i = i h, h = L / (N - 1). On the interval
-// [s_i, s_{i+1}] the pose is g = g_i exp(Theta(s)) and, in that chart, the BVP is an ODE in a
-// vector space (thesis (2.83)-(2.84), docs/conventions.md for the dexp convention):
+// written as a collocation. N uniform nodes s_i = i h, h = L / (N - 1) (with actuators, also
+// nodes at the breakpoints: see "Actuators" below). On the interval [s_i, s_{i+1}] the pose is
+// g = g_i exp(Theta(s)) and, in that chart, the BVP is an ODE in a vector space (thesis
+// (2.83)-(2.84), docs/conventions.md for the dexp convention):
 //
 //   Theta'  = F(Theta, Lambda) = dexp^-1_{-Theta} xi,          Theta(s_i) = 0
 //   Lambda' = ad_xi^T Lambda - W_bar(R_i exp(Theta_omega))     (2.34), xi = problem.strain(Lambda)
@@ -49,9 +50,29 @@
 // blocks at a third of the cost: 13 columns x ~3 stage evaluations per node); the base rows are
 // exact. Exact Newton: the Jacobian is re-evaluated at every iteration.
 //
+// Actuators (docs/statics.md). The mesh has a node at every StaticProblem::breakpoints() value
+// (span ends, routing knots): the N - 1 intervals are shared among the stretches between
+// breakpoints in proportion to their lengths (at least one each; N >= breakpoints + 2, else
+// std::invalid_argument), uniform within a stretch, so each interval has one active set
+// (active_mask at its midpoint) and a smooth integrand. Without breakpoints the mesh is the
+// uniform one above. The strain is the tendon law problem.strain(Lambda, s, mask) (a Newton
+// solve; its derivative enters through the finite differences). A node's Lambda unknown is its
+// left value; at a breakpoint the interval to its right sees Lambda + entry_jump(s, xi_left)
+// (cables pulled from outside where they enter), and each side evaluates the routing's one-sided
+// r' (at s - 1e-12 L on the left, and at the tip). Actuators with an unknown (displacement- or
+// volume-controlled, muscles) add one unknown each (scaled as in StaticProblem) and one row,
+// problem.extra_residuals of the path lengths integrated by the scheme's own Simpson quadrature
+// h/6 (|u_a| + 4 |u_m| + |u_b|) per interval (order 4, with the collocation's midpoint strain);
+// their columns are dense (a full residual per column), and every node column has the extra
+// rows. A displacement-controlled cable that would need to push is reported as not converged
+// ("slack"), as in shooting. Measured (tests/statics/test_kinsol_actuators.cpp) against rkmk-rk4
+// at N = 401: tip errors O(h^4) over N = 21, 41, 81 (observed 3.5-4.6 per doubling on the
+// non-nested meshes, 4.00 on a uniform one; mean over the two doublings 3.9-4.2).
+//
 // Initial guesses: free tip, the reference configuration g(s) = base exp(s xi*) with the wrench of
 // the undeformed rod in equilibrium with the loads ((2.34) marched back from W_tip with RK4 along
-// it); clamped tip, the constant-strain rod to the target (xi_c = log(base^-1 g_target) / L,
+// it, minus the pull of cables entering at breakpoints; extra unknowns at their initial guess);
+// clamped tip, the constant-strain rod to the target (xi_c = log(base^-1 g_target) / L,
 // Lambda = K (xi_c - xi*)) and the reference configuration with zero wrench.
 //
 // Solve:
@@ -94,8 +115,8 @@ struct KinsolCollocationReport {
 };
 
 /// Solves one static equilibrium; non-convergence is reported in the result (reason starts
-/// with KINSOL's flag name). Throws std::invalid_argument for nodes < 2 or bad options, and
-/// for problems with actuators (not supported by this scheme yet).
+/// with KINSOL's flag name). Throws std::invalid_argument for nodes < 2, fewer nodes than the
+/// actuator breakpoints need (breakpoints + 2), or bad options.
 KinsolCollocationReport solve_kinsol_collocation_report(const StaticProblem& problem,
                                                         const KinsolCollocationOptions& options);
 

@@ -1,0 +1,237 @@
+#define BOOST_TEST_MODULE kinsol_actuators
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "rodlab/solvers/statics/kinsol_collocation.hpp"
+#include "rodlab/solvers/statics/solve_static.hpp"
+
+// The kinsol collocation with actuators (docs/statics.md): closed forms where they exist,
+// otherwise rkmk-rk4 at fine N as the reference.
+
+using namespace rodlab;
+using namespace rodlab::solvers::statics;
+
+namespace {
+
+// Thesis Table 2.1 rod: E = 1 MPa, G = 0.33 MPa, rho = 1000, D = 1 cm, L = 10 cm.
+rod::RodModel table21(rod::ModelKind kind = rod::ModelKind::cosserat) {
+  return {0.1, rod::Circle{0.01}, rod::Material{1e6, 0.33e6, 1000, 0}, kind};
+}
+constexpr double kL = 0.1;
+
+ActuatorTerm straight(ActuatorKind kind, double x, double y, double s0 = 0.0, double s1 = kL) {
+  return {kind, loads::TendonPath({{0.0, Eigen::Vector2d(x, y)}}, s0, s1)};
+}
+
+result::StaticResult solve(const StaticProblem& P, const char* scheme, int nodes) {
+  auto r = solve_static(P, {scheme, nodes, 1e-12, 50});
+  BOOST_TEST_REQUIRE(r.converged, scheme << " N=" << nodes << ": " << r.reason);
+  BOOST_TEST(r.max_det_deviation <= 1e-13);
+  BOOST_TEST(r.max_orthogonality_error <= 1e-13);
+  return r;
+}
+
+lie::Vector3 tip(const result::StaticResult& r) { return r.centerline.back().pose.translation(); }
+
+void check_constant_twist(const result::StaticResult& r, const lie::Vector6& xi, double tol) {
+  for (const auto& node : r.centerline) {
+    BOOST_TEST((node.twist - xi).norm() <= tol, "s = " << node.s << " twist " << node.twist.transpose());
+    const lie::SE3 exact = lie::SE3::exp(node.s * xi);  // (2.78), exact for constant xi
+    BOOST_TEST((node.pose.translation() - exact.translation()).norm() <= tol * kL);
+  }
+}
+
+/// Observed orders of kinsol's tip error against rkmk-rk4 at N = 401 over N = 21, 41, 81.
+void check_order_four(const StaticProblem& P, const char* what) {
+  const lie::Vector3 ref = tip(solve(P, "rkmk-rk4", 401));
+  double e[3];
+  const int Ns[3] = {21, 41, 81};
+  for (int k = 0; k < 3; ++k) e[k] = (tip(solve(P, "kinsol", Ns[k])) - ref).norm();
+  const double o1 = std::log2(e[0] / e[1]), o2 = std::log2(e[1] / e[2]);
+  BOOST_TEST_MESSAGE(what << ": kinsol tip errors " << e[0] << ", " << e[1] << ", " << e[2]
+                          << " (N = 21, 41, 81), observed orders " << o1 << ", " << o2);
+  // The meshes are not nested (the intervals are shared among the stretches between
+  // breakpoints in proportion to their lengths), so each doubling's order scatters about 4.
+  const double mean = 0.5 * std::log2(e[0] / e[2]);
+  BOOST_TEST(e[0] < 1e-5 * kL, what);
+  BOOST_TEST(std::abs(o1 - 4.0) < 0.7, what << " observed order " << o1);
+  BOOST_TEST(std::abs(o2 - 4.0) < 0.7, what << " observed order " << o2);
+  BOOST_TEST(std::abs(mean - 4.0) < 0.3, what << " mean observed order " << mean);
+}
+
+}  // namespace
+
+// Reference (closed form): a straight cable at r = [d, 0, 0] with tension T and no other load is
+// a circular arc, E I kappa_y = T d, E A (nu_z - 1) = -T (test_actuators). T = 3 N bends the tip
+// by 2.44 rad, past 90 degrees; constant strain is reproduced to rounding by the collocation.
+BOOST_AUTO_TEST_CASE(straight_cable_gives_constant_curvature) {
+  const auto m = table21();
+  const double d = 0.004, EI = m.K_diag()[1], EA = m.K_diag()[5];
+  for (double T : {0.5, 3.0}) {
+    StaticProblem P(m, lie::SE3::identity());
+    auto a = straight(ActuatorKind::cable, d, 0.0);
+    a.input = T;
+    P.add_actuator(a);
+    lie::Vector6 xi;
+    xi << 0, T * d / EI, 0, 0, 0, 1 - T / EA;
+    check_constant_twist(solve(P, "kinsol", 21), xi, 1e-10);
+  }
+  // Kirchhoff: nu = nu*, only E I kappa_y = T d.
+  const auto mk = table21(rod::ModelKind::kirchhoff);
+  StaticProblem P(mk, lie::SE3::identity());
+  auto a = straight(ActuatorKind::cable, d, 0.0);
+  a.input = 0.5;
+  P.add_actuator(a);
+  lie::Vector6 xi;
+  xi << 0, 0.5 * d / mk.K_diag()[1], 0, 0, 0, 1;
+  check_constant_twist(solve(P, "kinsol", 21), xi, 1e-10);
+}
+
+// Reference (closed form): a fluidic chamber at r = [0, e, 0] under pressure P is a tendon with
+// F = -P A_c: E I kappa_x = P A_c e, E A (nu_z - 1) = P A_c.
+BOOST_AUTO_TEST_CASE(fluidic_chamber_under_pressure) {
+  const auto m = table21();
+  const double e = 0.003, Ac = std::numbers::pi * 1e-6, P_in = 2e4;
+  StaticProblem P(m, lie::SE3::identity());
+  auto a = straight(ActuatorKind::fluidic, 0.0, e);
+  a.chamber_area = Ac;
+  a.input = P_in;
+  P.add_actuator(a);
+  lie::Vector6 xi;
+  xi << P_in * Ac * e / m.K_diag()[0], 0, 0, 0, 0, 1 + P_in * Ac / m.K_diag()[5];
+  check_constant_twist(solve(P, "kinsol", 11), xi, 1e-12);
+  // With gravity and over part of the rod (both span ends inside): against rkmk-rk4.
+  StaticProblem Q(m, lie::SE3::identity());
+  Q.set_gravity(loads::Gravity(m, lie::Vector3(-9.81, 0, 0)));
+  auto b = straight(ActuatorKind::fluidic, 0.0, e, 0.0213, 0.0771);
+  b.chamber_area = Ac;
+  b.input = P_in;
+  Q.add_actuator(b);
+  check_order_four(Q, "fluidic chamber on [0.0213, 0.0771] under gravity");
+}
+
+// Reference: rkmk-rk4 at N = 401. A cable on [s0, L] enters the rod at s0 = 0.0437 (pulled from
+// outside: Lambda jumps by T c(xi) there), under gravity. With a node at s0 the collocation keeps
+// its order 4.
+BOOST_AUTO_TEST_CASE(cable_entering_inside_keeps_order_four) {
+  const auto m = table21();
+  StaticProblem P(m, lie::SE3::identity());
+  P.set_gravity(loads::Gravity(m, lie::Vector3(-9.81, 0, 0)));
+  auto a = straight(ActuatorKind::cable, 0.004, 0.002, 0.0437, kL);
+  a.input = 1.0;
+  P.add_actuator(a);
+  check_order_four(P, "cable entering at s0 = 0.0437");
+}
+
+// Reference: rkmk-rk4 at N = 401. Three cables with different spans (entries, ends) and a
+// routed one (knot at 0.05), under gravity.
+BOOST_AUTO_TEST_CASE(several_cables_together) {
+  const auto m = table21();
+  StaticProblem P(m, lie::SE3::identity());
+  P.set_gravity(loads::Gravity(m, lie::Vector3(-9.81, 0, 0)));
+  auto a = straight(ActuatorKind::cable, 0.004, 0.0, 0.0, 0.0613);
+  a.input = 0.6;
+  auto b = straight(ActuatorKind::cable, 0.0, 0.004, 0.0287, kL);
+  b.input = 0.4;
+  ActuatorTerm c{ActuatorKind::cable, loads::TendonPath({{0.0, Eigen::Vector2d(-0.004, 0)},
+                                                        {0.05, Eigen::Vector2d(0.0, -0.004)},
+                                                        {0.1, Eigen::Vector2d(0.004, 0)}},
+                                                       0.0, kL)};
+  c.input = 0.3;
+  P.add_actuator(a);
+  P.add_actuator(b);
+  check_order_four(P, "two straight cables");
+  StaticProblem Q(m, lie::SE3::identity());
+  Q.set_gravity(loads::Gravity(m, lie::Vector3(-9.81, 0, 0)));
+  Q.add_actuator(c);
+  check_order_four(Q, "routed cable only");
+  P.add_actuator(c);
+  check_order_four(P, "three cables");
+}
+
+// Reference: rkmk-rk4 at N = 401. A large tension takes the tip past 90 degrees under gravity.
+BOOST_AUTO_TEST_CASE(large_tension_past_ninety_degrees) {
+  const auto m = table21();
+  StaticProblem P(m, lie::SE3::identity());
+  P.set_gravity(loads::Gravity(m, lie::Vector3(-9.81, 0, 0)));
+  auto a = straight(ActuatorKind::cable, 0.004, 0.0, 0.0213, kL);
+  a.input = 4.0;
+  P.add_actuator(a);
+  const auto ref = solve(P, "rkmk-rk4", 401);
+  const auto r = solve(P, "kinsol", 41);
+  const lie::Vector3 z_tip = r.centerline.back().pose.rotation_matrix().col(2);
+  BOOST_TEST(z_tip.z() < 0.0, "tip tangent " << z_tip.transpose());  // past 90 degrees
+  const double err = (tip(r) - tip(ref)).norm();
+  const auto r2 = solve(P, "kinsol", 81);
+  const double err2 = (tip(r2) - tip(ref)).norm();
+  BOOST_TEST_MESSAGE("tension 4 N: kinsol tip errors " << err << ", " << err2 << " m (N = 41, 81), "
+                     << r.iterations << ", " << r2.iterations << " iterations");
+  BOOST_TEST(err < 5e-6 * kL);
+  BOOST_TEST(std::log2(err / err2) > 3.3);
+}
+
+// Reference (closed form, test_actuators): displacement control recovers the tension of the
+// straight cable; the force is an extra unknown with the integrated path length condition.
+BOOST_AUTO_TEST_CASE(displacement_control_and_slack) {
+  const auto m = table21();
+  const double d = 0.004, T = 0.5, EI = m.K_diag()[1], EA = m.K_diag()[5];
+  const double kappa = T * d / EI, nu_z = 1 - T / EA;
+  StaticProblem P(m, lie::SE3::identity());
+  auto a = straight(ActuatorKind::cable, d, 0.0);
+  a.input = kL - (nu_z - kappa * d) * kL;
+  a.target_length = 0.0;
+  P.add_actuator(a);
+  lie::Vector6 xi;
+  xi << 0, kappa, 0, 0, 0, nu_z;
+  check_constant_twist(solve(P, "kinsol", 21), xi, 1e-9);
+
+  StaticProblem S(m, lie::SE3::identity());
+  auto b = straight(ActuatorKind::cable, d, 0.0);
+  b.input = -0.001;
+  b.target_length = 0.0;
+  S.add_actuator(b);
+  const auto r = solve_static(S, {"kinsol", 21, 1e-12, 50});
+  BOOST_TEST(!r.converged);
+  BOOST_TEST(r.reason.find("slack") != std::string::npos, r.reason);
+}
+
+// Reference: rkmk-rk4 at N = 401 for a volume-controlled chamber on part of the rod and a muscle,
+// under gravity (extra unknowns: the chamber's pressure and the muscle's length).
+BOOST_AUTO_TEST_CASE(volume_control_and_muscle) {
+  const auto m = table21();
+  StaticProblem P(m, lie::SE3::identity());
+  P.set_gravity(loads::Gravity(m, lie::Vector3(-9.81, 0, 0)));
+  auto a = straight(ActuatorKind::fluidic, 0.0, 0.003, 0.0, 0.0613);
+  a.chamber_area = std::numbers::pi * 1e-6;
+  a.input = 1.02 * 0.0613 * a.chamber_area;  // 2 % more than the rest volume
+  a.target_length = 0.0;
+  P.add_actuator(a);
+  auto mu = straight(ActuatorKind::muscle, 0.003, 0.0, 0.0287, kL);
+  mu.input = 1.5;
+  mu.law = loads::make_muscle_law("linear", 0.2, 0.8);
+  const auto pa = rod::properties(rod::Circle{0.001});
+  const double Ea = 5e6;
+  mu.embedded_stiffness << Ea * pa.Ix, Ea * pa.Iy, Ea / 2.6 * pa.Jt, Ea / 2.6 * pa.A, Ea / 2.6 * pa.A, Ea * pa.A;
+  P.add_actuator(mu);
+  check_order_four(P, "volume control and muscle");
+}
+
+BOOST_AUTO_TEST_CASE(too_few_nodes_for_the_breakpoints_and_chebyshev_rejects) {
+  StaticProblem P(table21(), lie::SE3::identity());
+  auto a = straight(ActuatorKind::cable, 0.004, 0.0, 0.03, 0.07);
+  a.input = 0.5;
+  P.add_actuator(a);
+  BOOST_CHECK_THROW(solve_static(P, {"kinsol", 3, 1e-12, 50}), std::invalid_argument);
+  BOOST_TEST(solve_static(P, {"kinsol", 4, 1e-12, 50}).converged);
+  try {
+    solve_static(P, {"chebyshev", 24, 1e-12, 50});
+    BOOST_FAIL("chebyshev accepted actuators");
+  } catch (const std::invalid_argument& e) {
+    BOOST_TEST(std::string(e.what()).find("does not support actuators") != std::string::npos, e.what());
+  }
+}
