@@ -23,6 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_support.hpp"
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/solvers/schemes.hpp"
 
@@ -30,27 +31,11 @@ namespace fs = std::filesystem;
 using Json = nlohmann::json;
 constexpr double pi = std::numbers::pi;
 
+using namespace rodlab::testing::cli;
+
 namespace {
 
 const std::string kScene = RODLAB_SOURCE_DIR "/scenes/cantilever-gravity.yaml";
-
-std::string read(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'')
-      out += "'\\''";
-    else
-      out += c;
-  }
-  return out + "'";
-}
 
 /// Runs of spaces collapsed to one, so that aligned columns compare as plain text.
 std::string collapse(const std::string& text) {
@@ -61,66 +46,6 @@ std::string g6(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.6g", v);
   return buffer;
-}
-
-struct Run {
-  int status = -1;
-  std::string out, err;
-};
-
-/// A fresh working directory (work/) for the binary, and a separate place for its captured
-/// output, so that "nothing was written" can be checked on work/ alone.
-struct Sandbox {
-  fs::path root, work;
-  Sandbox() {
-    static int n = 0;
-    root = fs::temp_directory_path() /
-           ("rodlab-cli-" + std::to_string(::getpid()) + "-" + std::to_string(n++));
-    fs::remove_all(root);
-    work = root / "work";
-    fs::create_directories(work);
-  }
-  ~Sandbox() { fs::remove_all(root); }
-
-  Run run(const std::string& args) const {
-    const fs::path out = root / "stdout.txt", err = root / "stderr.txt";
-    const std::string command = "cd " + quote(work.string()) + " && " + quote(RODLAB_BINARY) + " " +
-                                args + " >" + quote(out.string()) + " 2>" + quote(err.string());
-    const int raw = std::system(command.c_str());
-    Run r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = read(out);
-    r.err = read(err);
-    return r;
-  }
-
-  void write(const std::string& name, const std::string& text) const {
-    std::ofstream(work / name) << text;
-  }
-
-  /// The names in work/, recursively.
-  std::set<std::string> files() const {
-    std::set<std::string> out;
-    for (const auto& e : fs::recursive_directory_iterator(work))
-      out.insert(fs::relative(e.path(), work).string());
-    return out;
-  }
-};
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-/// Exit status 2, the message contains every `parts`, nothing written in work/.
-void expect_bad_input(const Sandbox& box, const std::string& args,
-                      std::initializer_list<std::string> parts) {
-  const auto before = box.files();
-  const Run r = box.run(args);
-  BOOST_TEST_CONTEXT("rodlab " << args << "\nstderr: " << r.err) {
-    BOOST_TEST(r.status == 2);
-    for (const auto& p : parts) BOOST_TEST(contains(r.err, p), "stderr names '" << p << "'");
-    BOOST_TEST((box.files() == before), "nothing written");
-  }
 }
 
 /// The statics scheme of the example scene, from the scheme catalogue.

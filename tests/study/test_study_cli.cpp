@@ -22,82 +22,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../cli/cli_support.hpp"
 #include "rodlab/solvers/schemes.hpp"
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
+using namespace rodlab::testing::cli;
+
 namespace {
 
 const std::string kScene = RODLAB_SOURCE_DIR "/scenes/cantilever-gravity.yaml";
 const std::string kDynamicScene = RODLAB_SOURCE_DIR "/scenes/viscous-cantilever.yaml";
-
-std::string read(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-struct Run {
-  int status = -1;
-  std::string out, err;
-};
-
-struct Sandbox {
-  fs::path root, work;
-  Sandbox() {
-    static int n = 0;
-    root = fs::temp_directory_path() /
-           ("rodlab-study-" + std::to_string(::getpid()) + "-" + std::to_string(n++));
-    fs::remove_all(root);
-    work = root / "work";
-    fs::create_directories(work);
-  }
-  ~Sandbox() { fs::remove_all(root); }
-
-  /// `prefix` goes before the binary (e.g. mpirun ...).
-  Run run(const std::string& args, const std::string& prefix = "") const {
-    const fs::path out = root / "stdout.txt", err = root / "stderr.txt";
-    const std::string command = "cd " + quote(work.string()) + " && " + prefix + quote(RODLAB_BINARY) +
-                                " " + args + " >" + quote(out.string()) + " 2>" +
-                                quote(err.string());
-    const int raw = std::system(command.c_str());
-    Run r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = read(out);
-    r.err = read(err);
-    return r;
-  }
-
-  std::set<std::string> files() const {
-    std::set<std::string> out;
-    for (const auto& e : fs::recursive_directory_iterator(work))
-      out.insert(fs::relative(e.path(), work).string());
-    return out;
-  }
-};
-
-void expect_bad_input(const Sandbox& box, const std::string& args,
-                      std::initializer_list<std::string> parts) {
-  const auto before = box.files();
-  const Run r = box.run(args);
-  BOOST_TEST_CONTEXT("rodlab " << args << "\nstderr: " << r.err) {
-    BOOST_TEST(r.status == 2);
-    for (const auto& p : parts) BOOST_TEST(contains(r.err, p), "stderr names '" << p << "'");
-    BOOST_TEST((box.files() == before), "nothing written");
-  }
-}
 
 std::vector<std::vector<std::string>> csv(const fs::path& path) {
   std::vector<std::vector<std::string>> rows;
