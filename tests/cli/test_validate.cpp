@@ -24,6 +24,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_support.hpp"
 #include "validation_report.hpp"
 
 namespace fs = std::filesystem;
@@ -31,16 +32,8 @@ using Json = nlohmann::json;
 
 namespace {
 
-std::string read(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using rodlab::testing::cli::contains;
+using rodlab::testing::cli::read;
 
 struct Run {
   int status = -1;

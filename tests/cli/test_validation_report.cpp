@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "validation_figures.hpp"
+#include "cli_support.hpp"
 #include "validation_report.hpp"
 
 namespace fs = std::filesystem;
@@ -29,16 +30,8 @@ using namespace rodlab::cli;
 
 namespace {
 
-std::string read(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using rodlab::testing::cli::contains;
+using rodlab::testing::cli::read;
 
 struct TempDir {
   fs::path path;

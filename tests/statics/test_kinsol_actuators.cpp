@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "rodlab/solvers/statics/kinsol_collocation.hpp"
+#include "actuator_support.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
 // The kinsol collocation with actuators (docs/statics.md): closed forms where they exist,
@@ -15,36 +16,11 @@
 
 using namespace rodlab;
 using namespace rodlab::solvers::statics;
+using namespace rodlab::testing::actuators;
 
 namespace {
 
-// Thesis Table 2.1 rod: E = 1 MPa, G = 0.33 MPa, rho = 1000, D = 1 cm, L = 10 cm.
-rod::RodModel table21(rod::ModelKind kind = rod::ModelKind::cosserat) {
-  return {0.1, rod::Circle{0.01}, rod::Material{1e6, 0.33e6, 1000, 0}, kind};
-}
-constexpr double kL = 0.1;
-
-ActuatorTerm straight(ActuatorKind kind, double x, double y, double s0 = 0.0, double s1 = kL) {
-  return {kind, loads::TendonPath({{0.0, Eigen::Vector2d(x, y)}}, s0, s1)};
-}
-
-result::StaticResult solve(const StaticProblem& P, const char* scheme, int nodes) {
-  auto r = solve_static(P, {scheme, nodes, 1e-12, 50});
-  BOOST_TEST_REQUIRE(r.converged, scheme << " N=" << nodes << ": " << r.reason);
-  BOOST_TEST(r.max_det_deviation <= 1e-13);
-  BOOST_TEST(r.max_orthogonality_error <= 1e-13);
-  return r;
-}
-
 lie::Vector3 tip(const result::StaticResult& r) { return r.centerline.back().pose.translation(); }
-
-void check_constant_twist(const result::StaticResult& r, const lie::Vector6& xi, double tol) {
-  for (const auto& node : r.centerline) {
-    BOOST_TEST((node.twist - xi).norm() <= tol, "s = " << node.s << " twist " << node.twist.transpose());
-    const lie::SE3 exact = lie::SE3::exp(node.s * xi);  // (2.78), exact for constant xi
-    BOOST_TEST((node.pose.translation() - exact.translation()).norm() <= tol * kL);
-  }
-}
 
 /// Observed orders of kinsol's tip error against rkmk-rk4 at N = 401 over N = 21, 41, 81.
 void check_order_four(const StaticProblem& P, const char* what) {
