@@ -172,7 +172,7 @@ actuators:
 }
 
 // Kirchhoff rods (nu = nu*, (3.45)) with constraint forces (variational.cpp,
-// enforce_constraints). Released straight under gravity with strong laminar drag, the rod
+// KirchhoffConstraint, kirchhoff_constraint.hpp). Released straight under gravity with strong laminar drag, the rod
 // settles to the Kirchhoff statics (chebyshev, N = 24, exact to 1e-13 m): without the
 // constraint forces it could not carry its weight at all (docs/dynamics.md). The error is the
 // grid's discretisation error and falls at second order in ds, as for Cosserat rods.

@@ -16,7 +16,7 @@
 // makes the scheme first order in space). Conservative loads are evaluated at the new
 // configuration, drag at the old velocity. Kirchhoff rods (nu = nu*) get constraint forces per
 // segment, solved each step so that the next step's segments satisfy the constraint (SHAKE;
-// variational.cpp enforce_constraints, docs/dynamics.md).
+// kirchhoff_constraint.hpp, docs/dynamics.md).
 #include <memory>
 
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
