@@ -36,12 +36,16 @@ constexpr OptionSpec kStudyTolOption{
     "--tol", "X",
     "recommend: the tip error to reach [m]; other studies: the solver tolerance "
     "(default: solver.tol)"};
-constexpr std::array<OptionSpec, 12> kOptions{
+constexpr std::array<std::string_view, 2> kRefinements{"time", "joint"};
+constexpr std::array<OptionSpec, 13> kOptions{
     OptionSpec{"--schemes", "A,B,...",
                "schemes to compare, comma-separated (one problem class); default: all available"},
     OptionSpec{"--nodes", "N1,N2,...", "node counts, comma-separated integers >= 2"},
     OptionSpec{"--dt", "X1,X2,...", "time steps > 0, comma-separated (dynamics studies)"},
     OptionSpec{"--t-end", "T", "length of the dynamics runs [s]; default: dynamics.t_end"},
+    OptionSpec{"--refine", "time|joint",
+               "dynamics: refine dt at each N (time, default), or N and dt together, dt ~ ds, "
+               "against ida at a finer N (joint)"},
     OptionSpec{"--reference", "NAME", "reference solution: kinsol, ida or chebyshev"},
     kStudyTolOption,
     OptionSpec{"--budget-ms", "X", "recommend: time budget per run in milliseconds, > 0"},
@@ -99,11 +103,12 @@ std::optional<Problem> check_problem_class(OptionReader& reader, const std::stri
   }
   const bool has_dt = reader.arguments().has("--dt");
   const bool has_t_end = reader.arguments().has("--t-end");
-  if ((has_dt || has_t_end) && problem == Problem::statics)
-    reader.problem(std::string(has_dt ? "--dt" : "--t-end") +
+  const bool has_refine = reader.arguments().has("--refine");
+  if ((has_dt || has_t_end || has_refine) && problem == Problem::statics)
+    reader.problem(std::string(has_dt ? "--dt" : has_t_end ? "--t-end" : "--refine") +
                    ": only dynamics studies step in time, and " + decided_by +
                    " makes this a statics study");
-  if (!problem && (has_dt || has_t_end)) problem = Problem::dynamics;
+  if (!problem && (has_dt || has_t_end || has_refine)) problem = Problem::dynamics;
   return problem;
 }
 
@@ -114,6 +119,12 @@ void check_kind_options(OptionReader& reader, const std::string& kind) {
     reader.problem("--budget-ms: only `rodlab study recommend` takes a time budget");
   if (a.has("--repeats") && kind != "work-precision" && kind != "recommend")
     reader.problem("--repeats: only work-precision and recommend time their runs");
+  if (a.has("--refine") && kind == "stability")
+    reader.problem("--refine: a stability study compares no solutions");
+  if (reader.choice("--refine", kRefinements) == "joint" && a.value("--reference") &&
+      *a.value("--reference") != "ida")
+    reader.problem("--refine joint: the reference is ida at a finer N (got --reference " +
+                   *a.value("--reference") + ")");
   if (a.has("--moduli") && kind != "stability")
     reader.problem("--moduli: only `rodlab study stability` varies Young's modulus");
   if (kind == "recommend" && !a.has("--tol"))
@@ -286,6 +297,9 @@ int run(const Invocation& inv) {
                        ")");
         break;
       }
+  if (dts && dts->size() > 1 && inv.args.value("--refine") == "joint")
+    reader.problem("--dt: --refine joint starts from one step (dt at the coarsest N), got " +
+                   std::to_string(dts->size()));
   reader.finish();
   const scene::Scene scene = load_checked_scene(options);
 
@@ -304,6 +318,11 @@ int run(const Invocation& inv) {
                      std::string(solvers::to_string(settings.problem)) + " scheme to study");
   if (nodes) settings.nodes = *nodes;
   if (dts) settings.dts = *dts;
+  if (inv.args.value("--refine") == "joint") {
+    settings.refine = study::Refinement::joint;
+    if (!study::scheme_available("ida"))
+      throw NotAvailable("--refine joint: its reference, ida, is not available yet");
+  }
   if (moduli) settings.moduli = *moduli;
   const bool recommend = kind == "recommend";
   settings.tol = (!recommend && tol) ? *tol : scene.solver.tol;
@@ -353,7 +372,8 @@ const Command& study_command() {
       "convergence, work-precision, stability studies; scheme recommendation",
       "KIND is one of:\n"
       "  convergence      error against the reference as the nodes (or dt) are refined; observed\n"
-      "                   order (DIR/convergence.csv, convergence_orders.csv, study.json)\n"
+      "                   order (DIR/convergence.csv, convergence_orders.csv, study.json);\n"
+      "                   dynamics: dt at each N, or with --refine joint N and dt together\n"
       "  work-precision   error against median wall time for each scheme and resolution, and\n"
       "                   the Pareto front (DIR/work_precision.csv, study.json)\n"
       "  stability        largest stable time step of the explicit scheme against E and N;\n"

@@ -95,6 +95,42 @@ Plan plan_dynamics(const Settings& s) {
   return plan;
 }
 
+/// Joint refinement: every scheme at every N with dt proportional to ds (joint_steps), against
+/// ida at 4 (N_finest - 1) + 1 nodes, output at the coarsest step of all runs.
+Plan plan_dynamics_joint(const Settings& s) {
+  Plan plan;
+  auto nodes = study_nodes(s);
+  std::sort(nodes.begin(), nodes.end());
+  const int ref_nodes = 4 * (nodes.back() - 1) + 1;
+  const double ref_tol = std::min(s.tol, 1e-10);
+  std::vector<std::vector<double>> steps;
+  double coarsest = 0.0;
+  for (const auto& scheme : s.schemes) {
+    steps.push_back(joint_steps(s, scheme, nodes));
+    coarsest = std::max(coarsest, *std::max_element(steps.back().begin(), steps.back().end()));
+  }
+  // the reference's output step: the coarsest run's (ida's cost grows with its output count)
+  plan.specs.push_back({"ida", Problem::dynamics, ref_nodes, coarsest, s.t_end, ref_tol, 1, true});
+  plan.roles.push_back("reference");
+  plan.reference_of.push_back(-1);
+  for (std::size_t k = 0; k < s.schemes.size(); ++k)
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      plan.specs.push_back({std::string(s.schemes[k].name), Problem::dynamics, nodes[i],
+                            steps[k][i], s.t_end, s.tol, s.repeats, true});
+      plan.roles.push_back("study");
+      plan.reference_of.push_back(0);
+    }
+  plan.reference = {{"kind", "scheme"},
+                    {"scheme", "ida"},
+                    {"nodes", ref_nodes},
+                    {"tol", ref_tol},
+                    {"description", "ida at N = " + std::to_string(ref_nodes) + ", tol " +
+                                        format_number(ref_tol) +
+                                        ", output at the coarsest step; N and dt refined "
+                                        "together (dt proportional to ds)"}};
+  return plan;
+}
+
 /// Largest tip distance over the output times the run shares with its reference.
 double max_common_error(const RunRecord& run, const RunRecord& ref, double t_end) {
   double worst = 0.0;
@@ -111,7 +147,10 @@ double max_common_error(const RunRecord& run, const RunRecord& ref, double t_end
 }  // namespace
 
 Sweep run_sweep(const Settings& s, const Executor& executor) {
-  const Plan plan = s.problem == Problem::statics ? plan_statics(s) : plan_dynamics(s);
+  const bool joint = s.problem == Problem::dynamics && s.refine == Refinement::joint;
+  const Plan plan = s.problem == Problem::statics ? plan_statics(s)
+                    : joint                      ? plan_dynamics_joint(s)
+                                                 : plan_dynamics(s);
   std::vector<std::function<Json()>> tasks;
   for (const auto& spec : plan.specs)
     tasks.push_back([&s, spec] { return to_json(run_case(s.scene, spec)); });
@@ -127,8 +166,8 @@ Sweep run_sweep(const Settings& s, const Executor& executor) {
     row.role = plan.roles[i];
     row.spec = plan.specs[i];
     row.run = record_from_json(results[i]);
-    row.h = s.problem == Problem::statics ? length / (row.spec.nodes - 1) : row.run.dt;
-    if (row.run.dt == 0.0 && s.problem == Problem::dynamics) row.h = row.spec.dt;
+    row.h = s.problem == Problem::statics || joint ? length / (row.spec.nodes - 1) : row.run.dt;
+    if (row.run.dt == 0.0 && s.problem == Problem::dynamics && !joint) row.h = row.spec.dt;
     if (row.role == "reference" && row.run.converged) scale = std::max(scale, row.run.tip.norm());
     sweep.rows.push_back(std::move(row));
   }
@@ -150,14 +189,15 @@ Sweep run_sweep(const Settings& s, const Executor& executor) {
       row.max_error = std::max(row.error, max_common_error(row.run, ref, s.t_end));
   }
 
-  // Orders: statics per scheme (in ds), dynamics per scheme and N (in dt).
+  // Orders: statics and joint refinement per scheme (in ds), dynamics per scheme and N (in dt).
   std::map<std::pair<std::string, int>, std::vector<std::size_t>> groups;
   std::vector<std::pair<std::string, int>> order;
   for (std::size_t i = 0; i < sweep.rows.size(); ++i) {
     const auto& row = sweep.rows[i];
     if (row.role != "study") continue;
     const std::pair<std::string, int> key{row.spec.scheme,
-                                          s.problem == Problem::statics ? 0 : row.spec.nodes};
+                                          s.problem == Problem::statics || joint ? 0
+                                                                                 : row.spec.nodes};
     if (!groups.count(key)) order.push_back(key);
     groups[key].push_back(i);
   }
@@ -171,7 +211,7 @@ Sweep run_sweep(const Settings& s, const Executor& executor) {
     SchemeOrder o;
     o.scheme = key.first;
     o.nodes = key.second;
-    o.variable = s.problem == Problem::statics ? "ds" : "dt";
+    o.variable = s.problem == Problem::statics ? "ds" : joint ? "ds (dt ~ ds)" : "dt";
     if (const auto info = solvers::find_scheme(key.first)) o.expected = std::string(info->order);
     o.fit = fit_order(points, sweep.rounding_floor);
     o.h_max = 0.0;

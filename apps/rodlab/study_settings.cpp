@@ -1,5 +1,6 @@
 #include "study_settings.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,13 +13,15 @@
 
 namespace rodlab::cli::study {
 
-std::vector<int> default_nodes(solvers::Problem problem) {
+std::vector<int> default_nodes(solvers::Problem problem, Refinement refine) {
   if (problem == solvers::Problem::statics) return {6, 11, 21, 41, 81};
+  if (refine == Refinement::joint) return {6, 11, 21, 41};
   return {10, 20};
 }
 
 std::vector<int> study_nodes(const Settings& settings) {
-  return settings.nodes.empty() ? default_nodes(settings.problem) : settings.nodes;
+  return settings.nodes.empty() ? default_nodes(settings.problem, settings.refine)
+                                : settings.nodes;
 }
 
 std::vector<double> study_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
@@ -27,6 +30,31 @@ std::vector<double> study_steps(const Settings& settings, const solvers::SchemeI
   const auto problem = solvers::dynamics::DynamicProblem::from_scene(settings.scene);
   const double dt = solvers::dynamics::auto_time_step(problem, scheme.name, nodes);
   return {dt, dt / 2, dt / 4, dt / 8};
+}
+
+std::vector<double> joint_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
+                                const std::vector<int>& nodes) {
+  const auto problem = solvers::dynamics::DynamicProblem::from_scene(settings.scene);
+  const bool explicit_scheme = !scheme.implicit;  // its auto step is its stability limit
+  const double L = settings.scene.rod.length;
+  const double ds0 = L / (nodes.front() - 1);
+  const double dt0 = settings.dts.empty()
+                         ? solvers::dynamics::auto_time_step(problem, scheme.name, nodes.front())
+                         : settings.dts.front();
+  std::vector<double> steps;
+  for (const int n : nodes) {
+    double dt = dt0 * (L / (n - 1)) / ds0;
+    if (explicit_scheme)
+      dt = std::min(dt, solvers::dynamics::auto_time_step(problem, scheme.name, n));
+    // equal steps that end at t_end (what the run uses, so the output times nest)
+    dt = settings.t_end / std::ceil(settings.t_end / dt * (1.0 - 1e-12));
+    steps.push_back(dt);
+  }
+  return steps;
+}
+
+std::string_view to_string(Refinement refine) {
+  return refine == Refinement::joint ? "joint" : "time";
 }
 
 std::vector<solvers::SchemeInfo> available_schemes(solvers::Problem problem) {
@@ -61,6 +89,7 @@ Json settings_json(const Settings& s) {
               {"schemes", schemes},
               {"nodes", study_nodes(s)},
               {"dt", s.dts},
+              {"refine", std::string(to_string(s.refine))},
               {"reference", s.reference ? Json(*s.reference) : Json(nullptr)},
               {"solver_tol", s.tol},
               {"t_end", s.t_end},

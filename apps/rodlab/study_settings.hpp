@@ -16,6 +16,10 @@ namespace rodlab::cli::study {
 
 using Json = nlohmann::json;
 
+/// How a dynamics convergence study refines: the step at each N (time), or N and the step
+/// together with dt proportional to ds, against ida at a finer N (joint).
+enum class Refinement { time, joint };
+
 struct Settings {
   std::string scene_path;
   std::vector<std::string> overrides;  ///< the --set texts (part of the scene's identity)
@@ -24,6 +28,7 @@ struct Settings {
   std::vector<solvers::SchemeInfo> schemes;  ///< available schemes of `problem`
   std::vector<int> nodes;                    ///< empty: default_nodes()
   std::vector<double> dts;                   ///< dynamics; empty: auto / 2^k per scheme and N
+  Refinement refine = Refinement::time;      ///< dynamics convergence studies
   std::optional<std::string> reference;      ///< --reference; nullopt: the default
   double tol = 1e-10;                        ///< nonlinear solver tolerance of every run
   double t_end = 0.0;                        ///< dynamics run length [s]
@@ -32,13 +37,21 @@ struct Settings {
   std::string command_line;
 };
 
-/// Statics: 6, 11, 21, 41, 81 (ds halves); dynamics: 10, 20.
-std::vector<int> default_nodes(solvers::Problem problem);
+/// Statics: 6, 11, 21, 41, 81 (ds halves); dynamics: 10, 20; joint refinement: 6, 11, 21, 41.
+std::vector<int> default_nodes(solvers::Problem problem, Refinement refine = Refinement::time);
 /// The nodes of the study (settings.nodes or the default).
 std::vector<int> study_nodes(const Settings& settings);
 /// The time steps of `scheme` at N nodes: settings.dts, or auto_time_step / {1, 2, 4, 8}.
 std::vector<double> study_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
                                 int nodes);
+/// Joint refinement: the step of `scheme` at each of `nodes` (ascending): dt_0 (settings.dts'
+/// first value, or the scheme's auto_time_step at the coarsest N) times ds / ds_0, made an
+/// exact divisor of t_end; for a scheme whose auto step is a stability limit (variational),
+/// never above its limit at that N.
+std::vector<double> joint_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
+                                const std::vector<int>& nodes);
+/// "time" or "joint".
+std::string_view to_string(Refinement refine);
 /// The available schemes of a problem class, in catalogue order.
 std::vector<solvers::SchemeInfo> available_schemes(solvers::Problem problem);
 /// Whether the catalogue marks the scheme of that name available.

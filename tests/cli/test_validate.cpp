@@ -126,7 +126,8 @@ BOOST_AUTO_TEST_CASE(quick_suite_writes_the_whole_report) {
   // The figures a reader expects: shapes, convergence, tips, energy, det, stability,
   // work-precision diagrams and the stability map.
   BOOST_TEST(n_figures >= 11);
-  for (const char* f : {"studies_wp_statics", "studies_wp_dynamics", "studies_stability_map"})
+  for (const char* f : {"studies_wp_statics", "studies_wp_dynamics", "studies_joint_convergence",
+                        "studies_stability_map"})
     BOOST_TEST(contains(html, std::string("id=\"figure-") + f + "\""), f);
   BOOST_TEST(!contains(html, " missing (figures"));
   BOOST_TEST(contains(read(dir / "report.md"), "](figures/statics_shapes.svg)"));
