@@ -103,8 +103,18 @@ inline SE3 exp(const Vector6& xi) {
   const Vector3 wv = w.cross(v);
   const double sh = t2 < kTinyAngle * kTinyAngle ? coefficients::detail::horner(sinc_series4, h2)
                                                  : coefficients::detail::horner(sinc_series, h2);
+  // cos(h) from its series in h^2 as well (no square root): 7 terms for h <= 0.125 (first
+  // dropped term 3e-20), 4 for h <= 0.005 (6e-24).
+  static constexpr auto cos_series = [] {  // (-1)^k / (2k)!
+    std::array<double, 7> s{};
+    for (int k = 0; k < 7; ++k) s[k] = (k % 2 ? -1.0 : 1.0) / coefficients::detail::factorial(2 * k);
+    return s;
+  }();
+  static constexpr auto cos_series4 = detail::head<4>(cos_series);
+  const double ch = t2 < kTinyAngle * kTinyAngle ? coefficients::detail::horner(cos_series4, h2)
+                                                 : coefficients::detail::horner(cos_series, h2);
   const double b = 0.5 * sh * sh, cc = c(t2);
-  return SE3(SO3::exp(w), v + b * wv + cc * w.cross(wv));
+  return SE3(SO3::exp_from_half_angle(ch, sh, w), v + b * wv + cc * w.cross(wv));
 }
 
 /// SE3::log of g, and the coefficients e, f of its rotation angle (for dexp^-T of the result).
@@ -114,7 +124,8 @@ inline Vector6 log(const SE3& g, EF& k) {
   const double qw = sign * q.w();
   const Vector3 qv = sign * q.vec();
   const double n2 = qv.squaredNorm();
-  const double x2 = n2 / (qw * qw);  // tan^2(theta / 2)
+  const double inv_qw = 1.0 / qw;                // the one division
+  const double x2 = n2 * (inv_qw * inv_qw);  // tan^2(theta / 2)
   // tan(kSmallAngle / 2)^2 = 0.01580...
   constexpr double kX2 = 0.0158;
   if (!(x2 < kX2)) {
@@ -125,7 +136,7 @@ inline Vector6 log(const SE3& g, EF& k) {
   // x^2 < 1e-4 (theta < 0.02): five terms, the first dropped one is 9e-22.
   const double atan_x_over_x = x2 < 1e-4 ? coefficients::detail::horner(detail::kAtan5, x2)
                                           : coefficients::detail::horner(detail::kAtan9, x2);
-  const double scale = 2.0 / qw * atan_x_over_x;
+  const double scale = 2.0 * inv_qw * atan_x_over_x;
   const Vector3 w = scale * qv;
   k = ef(w.squaredNorm());
   const Vector3& p = g.translation();

@@ -76,8 +76,13 @@ class SO3 {
     const double half = 0.5 * w.norm();
     double c, s;  // cos(half), sin(half)/half
     coefficients::cos_sinc(half, c, s);
-    const Vector3 v = 0.5 * s * w;
-    return SO3(Quaternion(c, v.x(), v.y(), v.z()), Unchecked{});
+    return exp_from_half_angle(c, s, w);
+  }
+  /// exp(w^) from cos(t/2) and sin(t/2)/(t/2), t = |w|, computed by the caller (the small-angle
+  /// kernels of small_angle.hpp evaluate them from t^2 without a square root).
+  static SO3 exp_from_half_angle(double cos_half, double sinc_half, const Vector3& w) {
+    const Vector3 v = 0.5 * sinc_half * w;
+    return SO3(Quaternion(cos_half, v.x(), v.y(), v.z()), Unchecked{});
   }
 
   /// From a rotation matrix (assumed orthonormal with det +1; Eigen uses Shepperd's method).
@@ -109,11 +114,12 @@ class SO3 {
   SO3 inverse() const { return SO3(q_.conjugate(), Unchecked{}); }
 
   /// Composition; the product quaternion is pulled back onto the unit sphere with the
-  /// first-order correction q * 2 / (1 + |q|^2) (one division; |q|^2 - 1 is O(eps)).
+  /// first-order correction q (3 - |q|^2) / 2 (|q|^2 - 1 is O(eps), so the dropped term is
+  /// O(eps^2); no division, which mattered in the explicit integrator's step).
   SO3 operator*(const SO3& other) const {
     Quaternion q = q_ * other.q_;
     const double n2 = q.squaredNorm();
-    q.coeffs() *= 2.0 / (1.0 + n2);
+    q.coeffs() *= 1.5 - 0.5 * n2;
     return SO3(q, Unchecked{});
   }
   SO3& operator*=(const SO3& other) { return *this = *this * other; }
