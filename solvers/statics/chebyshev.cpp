@@ -1,6 +1,7 @@
 #include "rodlab/solvers/statics/chebyshev.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -56,6 +57,13 @@ constexpr double kFdStep = 1e-5;
 constexpr double kCompletionRotation = kSplitRotation / 2.0;
 /// Fixed-point sweeps of that bending (contraction ~ rotation / 2).
 constexpr int kCompletionSweeps = 2;
+/// With actuator breakpoints the elements get intervals in proportion to (length / L) to this
+/// power. Measured (tests/statics/test_chebyshev_actuators.cpp, five actuator cases, tip errors
+/// at N = 12..40): 1 (in proportion to length) leaves short elements with 2-3 nodes and the
+/// error stalls (4.4e-3 m at N = 12 with a cable entering at 0.0213 under T = 4 N, 8.4e-6 m at
+/// N = 16..24 with three cables); 0 (equal shares) starves long elements; 1/2 was best or
+/// close to it in every case.
+constexpr double kLengthExponent = 0.5;
 
 /// Chebyshev-Lobatto operators on [-1, 1] for one node count (chebyshev_operators.hpp).
 struct Operators {
@@ -64,6 +72,8 @@ struct Operators {
   MatrixXd absD;       ///< its entries' magnitudes
   MatrixXd integrate;  ///< chebyshev_integration_matrix
   MatrixXd midpoints;  ///< interpolation to the midpoints in angle, -cos((j + 1/2) pi / (n - 1))
+  VectorXd mid;        ///< those midpoints
+  VectorXd weights;    ///< Clenshaw-Curtis quadrature weights
 };
 
 /// The operators for n nodes. They depend on n only: each thread builds them once per n.
@@ -76,8 +86,10 @@ const Operators& operators(int n) {
     const int m = n - 1;
     VectorXd mid(m);
     for (int j = 0; j < m; ++j) mid[j] = -std::cos((j + 0.5) * pi / m);
+    MatrixXd midpoints = chebyshev_interpolation_matrix(n, mid);
     it = cache.emplace(n, Operators{chebyshev_lobatto_points(n), std::move(D), std::move(absD),
-                                    chebyshev_integration_matrix(n), chebyshev_interpolation_matrix(n, mid)})
+                                    chebyshev_integration_matrix(n), std::move(midpoints), std::move(mid),
+                                    clenshaw_curtis_weights(n)})
              .first;
   }
   return it->second;
@@ -89,7 +101,87 @@ struct Element {
   double half;            ///< half its length: d/ds = D / half
   const Operators* op;
   std::vector<double> s;  ///< arclengths of its nodes
+  StaticProblem::Mask mask = 0;  ///< actuators active on it (one set: no breakpoint inside)
+  bool entry_after = false;      ///< a cable enters the rod at its end (Lambda jumps there)
 };
+
+/// Element boundaries and intervals (nodes - 1) per element of one layout (chebyshev.hpp,
+/// "spectral elements" and "actuators").
+struct Layout {
+  std::vector<double> cuts;
+  std::vector<int> intervals;
+  int elements() const { return static_cast<int>(intervals.size()); }
+};
+
+/// Element boundaries of layout level E: E equal elements without breakpoints; with them, every
+/// stretch between breakpoints (and the ends) split into ceil(E l / L) equal elements.
+std::vector<double> element_cuts(const StaticProblem& P, int level) {
+  const double L = P.length();
+  const auto& breaks = P.breakpoints();
+  std::vector<double> cuts{0.0};
+  if (breaks.empty()) {
+    for (int e = 1; e <= level; ++e) cuts.push_back(e == level ? L : L * e / level);
+    return cuts;
+  }
+  double a = 0.0;
+  for (std::size_t k = 0; k <= breaks.size(); ++k) {
+    const double b = k < breaks.size() ? breaks[k] : L;
+    const int parts = std::max(1, static_cast<int>(std::ceil(level * (b - a) / L - 1e-9)));
+    for (int c = 1; c <= parts; ++c) cuts.push_back(c == parts ? b : a + (b - a) * c / parts);
+    a = b;
+  }
+  return cuts;
+}
+
+int element_count(const StaticProblem& P, int level) {
+  return static_cast<int>(element_cuts(P, level).size()) - 1;
+}
+
+/// The layout of level E with N nodes. Without breakpoints the first (N - 1) mod E elements have
+/// one interval more than the others. With breakpoints the N - 1 intervals are shared in
+/// proportion to (l_e / L)^kLengthExponent, at least 2 per element when N allows (else 1).
+Layout make_layout(const StaticProblem& P, int nodes, int level) {
+  const double L = P.length();
+  const int intervals = nodes - 1;
+  Layout out{element_cuts(P, level), {}};
+  const int E = static_cast<int>(out.cuts.size()) - 1;
+  if (P.breakpoints().empty()) {
+    for (int e = 0; e < E; ++e) out.intervals.push_back(intervals / E + (e < intervals % E ? 1 : 0));
+    return out;
+  }
+  const int least = intervals >= 2 * E ? 2 : 1;
+  std::vector<double> ideal(E);
+  double sum = 0.0;
+  for (int e = 0; e < E; ++e)
+    sum += ideal[e] = std::pow((out.cuts[e + 1] - out.cuts[e]) / L, kLengthExponent);
+  out.intervals.resize(E);
+  int total = 0;
+  for (int e = 0; e < E; ++e) {
+    ideal[e] *= intervals / sum;
+    out.intervals[e] = std::max(least, static_cast<int>(std::floor(ideal[e])));
+    total += out.intervals[e];
+  }
+  while (total > intervals) {  // take from the most over-served element that can spare one
+    int best = -1;
+    for (int e = 0; e < E; ++e)
+      if (out.intervals[e] > least &&
+          (best < 0 || out.intervals[e] - ideal[e] > out.intervals[best] - ideal[best]))
+        best = e;
+    --out.intervals[best];
+    --total;
+  }
+  while (total < intervals) {  // give to the most under-served one
+    int best = 0;
+    for (int e = 1; e < E; ++e)
+      if (ideal[e] - out.intervals[e] > ideal[best] - out.intervals[best]) best = e;
+    ++out.intervals[best];
+    ++total;
+  }
+  return out;
+}
+
+/// Path lengths of the actuators by index (StaticProblem::extra_residuals).
+using Lengths = std::array<double, StaticProblem::kMaxActuators>;
 
 struct NewtonOutcome {
   bool converged = false;
@@ -101,20 +193,28 @@ struct NewtonOutcome {
 /// The collocation system of one element layout at the problem's current load factor.
 class Collocation {
  public:
-  Collocation(const StaticProblem& problem, int nodes, int elements) : P_(problem) {
+  /// The layout of level E (make_layout); with actuators, element boundaries at the breakpoints.
+  Collocation(const StaticProblem& problem, int nodes, int level)
+      : P_(problem), extra_(problem.extra_unknowns()) {
     const double L = P_.length();
-    const int intervals = nodes - 1;
-    const int base = intervals / elements, extra = intervals % elements;
-    int offset = 0;
+    const Layout layout = make_layout(P_, nodes, level);
+    const int elements = layout.elements();
+    int offset = 0, largest = 0;
     for (int e = 0; e < elements; ++e) {
-      const int n = base + (e < extra ? 1 : 0) + 1;
+      const int n = layout.intervals[e] + 1;
       const Operators& op = operators(n);
-      const double a = L * e / elements, b = e + 1 == elements ? L : L * (e + 1) / elements;
+      const double a = layout.cuts[e], b = layout.cuts[e + 1];
       std::vector<double> s(n);
       for (int i = 0; i < n; ++i)
         s[i] = i == 0 ? a : i == n - 1 ? b : 0.5 * (a + b) + 0.5 * (b - a) * op.t[i];
-      elements_.push_back({n, offset, 0.5 * (b - a), &op, std::move(s)});
+      Element el{n, offset, 0.5 * (b - a), &op, std::move(s)};
+      if (P_.has_actuators()) {
+        el.mask = P_.active_mask(0.5 * (a + b));
+        el.entry_after = e + 1 < elements && P_.has_entry(b);
+      }
+      elements_.push_back(std::move(el));
       offset += n;
+      largest = std::max(largest, n);
     }
     nodes_ = nodes;
     total_nodes_ = offset;
@@ -122,27 +222,40 @@ class Collocation {
     charts_.resize(elements);
     std::vector<ChebyshevNewtonMatrix::Element> shape;
     for (const auto& el : elements_) shape.push_back({el.n, el.offset, &el.op->D});
-    newton_matrix_.emplace(std::move(shape));
-    linear_scratch_.resize(elements_.front().n, 12);  // the first element is the largest
+    newton_matrix_.emplace(std::move(shape), extra_);
+    linear_scratch_.resize(largest, 12);
+    for (std::size_t k = 0, j = 0; k < P_.actuators().size(); ++k)
+      extra_row_[k] = P_.actuators()[k].has_unknown() ? static_cast<int>(j++) : -1;
   }
 
-  int size() const { return 12 * total_nodes_; }
+  int size() const { return 12 * total_nodes_ + extra_; }
+  int node_unknowns() const { return 12 * total_nodes_; }
   int elements() const { return static_cast<int>(elements_.size()); }
   StaticProblem& problem() { return P_; }
 
   /// Reference configuration theta = (s - s_e) xi* and the undeformed rod's equilibrium wrench at
-  /// the current load factor.
-  VectorXd reference_guess() const {
+  /// the current load factor (the actuator forces are internal: only cables entering from
+  /// outside appear in it, as jumps); extra unknowns at their initial guess (zero force,
+  /// Delta = Delta*), which it also sets in the problem.
+  VectorXd reference_guess() {
     std::vector<double> all;
     for (const auto& el : elements_) all.insert(all.end(), el.s.begin(), el.s.end());
     const auto Lambda = rigid_wrench_profile(P_, all, nodes_ - 1);  // ascending, with duplicates
     VectorXd x(size());
-    for (const auto& el : elements_)
+    set_initial_extras(x);
+    const Vector6& xi_star = P_.model().xi_star();
+    for (std::size_t e = 0; e < elements_.size(); ++e) {
+      const Element& el = elements_[e];
       for (int i = 0; i < el.n; ++i) {
         double* xn = x.data() + 12 * (el.offset + i);
-        node_theta(xn) = ((el.s[i] - el.s[0]) * P_.model().xi_star()).cwiseQuotient(theta_scale_);
-        node_lambda(xn) = Lambda[el.offset + i].cwiseQuotient(P_.wrench_scale());
+        node_theta(xn) = ((el.s[i] - el.s[0]) * xi_star).cwiseQuotient(theta_scale_);
+        // The profile holds the value left of a breakpoint at both copies of an interface node;
+        // the next element's first node is right of it, after a cable's entry.
+        Vector6 La = Lambda[el.offset + i];
+        if (i == 0 && e > 0 && elements_[e - 1].entry_after) La += P_.entry_jump(el.s[0], xi_star);
+        node_lambda(xn) = La.cwiseQuotient(P_.wrench_scale());
       }
+    }
     return x;
   }
 
@@ -153,7 +266,8 @@ class Collocation {
   /// linear-elastic deflection, and the first Newton matrix is evaluated near the solution (5
   /// iterations instead of 8 on the gravity cantilever). False, x unchanged, when a chart would
   /// turn by more than kCompletionRotation.
-  bool complete_kinematics(VectorXd& x) const {
+  bool complete_kinematics(VectorXd& x) {
+    set_extras(x);
     using Block = Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor>;
     VectorXd bent = x;
     Eigen::Matrix<double, Eigen::Dynamic, 6> rate;
@@ -163,7 +277,7 @@ class Collocation {
       for (int sweep = 0; sweep < kCompletionSweeps; ++sweep) {
         for (int i = 1; i < el.n; ++i) {
           const double* xn = bent.data() + 12 * (el.offset + i);
-          rate.row(i) = theta_rate(el, theta(xn), P_.strain(lambda(xn))).transpose();
+          rate.row(i) = theta_rate(el, theta(xn), node_strain(el, i, lambda(xn))).transpose();
         }
         X.leftCols<6>() = el.op->integrate * rate;
       }
@@ -176,11 +290,12 @@ class Collocation {
   /// Clamped tip: the constant twist xi_c = log(g_0^-1 g_target) / L that joins base and target
   /// (thesis 2.5), theta = (s - s_e) xi_c, Lambda = K (xi_c - xi*) (Kirchhoff: its moment part).
   /// Exact for a target at the end of a circular arc or helix.
-  VectorXd constant_twist_guess() const {
+  VectorXd constant_twist_guess() {
     const Vector6 xi = (P_.base().inverse() * P_.tip_target()).log() / P_.length();
     Vector6 Lambda = P_.rod_wrench(xi);
     if (P_.model().is_kirchhoff()) Lambda.tail<3>().setZero();
     VectorXd x(size());
+    set_initial_extras(x);
     for (const auto& el : elements_)
       for (int i = 0; i < el.n; ++i) {
         double* xn = x.data() + 12 * (el.offset + i);
@@ -190,15 +305,22 @@ class Collocation {
     return x;
   }
 
-  /// F(x); false if a chart leaves its domain or something is not finite.
+  /// F(x); false if a chart leaves its domain or something is not finite. With extra unknowns
+  /// (set in the problem from x) F ends with their length rows (StaticProblem::extra_residuals),
+  /// the path lengths by Clenshaw-Curtis quadrature on every element's nodes: spectral, as the
+  /// collocation (the path length rate |u| is smooth inside each element).
   bool residual(const VectorXd& x, VectorXd& F) {
+    set_extras(x);
     if (!update_charts(x)) return false;
     F.resize(size());
+    Lengths lengths{};
     for (int e = 0; e < elements(); ++e) {
       const Element& el = elements_[e];
-      for (int i = 0; i < el.n; ++i) local_rows(e, i, x.data(), F.data() + 12 * (el.offset + i));
+      for (int i = 0; i < el.n; ++i)
+        local_rows(e, i, x.data(), F.data() + 12 * (el.offset + i), extra_ ? &lengths : nullptr);
       add_linear(e, x, F);
     }
+    if (extra_) P_.extra_residuals(lengths, std::span<double>(F.data() + node_unknowns(), extra_));
     return F.allFinite();
   }
 
@@ -206,9 +328,11 @@ class Collocation {
   /// its rows' derivatives with respect to its own unknowns (the D part is linear and known),
   /// and the chart blocks.
   void jacobian(const VectorXd& x) {
+    set_extras(x);
     update_charts(x);
     ChebyshevNewtonMatrix& M = *newton_matrix_;
     VectorXd xp = x;
+    if (extra_) border(x, xp);
     for (int e = 0; e < elements(); ++e) {
       const Element& el = elements_[e];
       for (int i = 0; i < el.n; ++i) {
@@ -324,6 +448,29 @@ class Collocation {
     return out;
   }
 
+  /// The assembled Newton matrix at x against central differences of the residual, column by
+  /// column: max_c |J_c - J_fd,c|_inf / max(1, |J_fd,c|_inf).
+  double newton_matrix_error(const VectorXd& x) {
+    jacobian(x);
+    MatrixXd J;
+    newton_matrix_->assemble(J);
+    VectorXd xp = x, Fp, Fm;
+    double worst = 0.0;
+    for (int c = 0; c < size(); ++c) {
+      const double h = kFdStep * std::max(1.0, std::abs(x[c]));
+      xp[c] = x[c] + h;
+      residual(xp, Fp);
+      xp[c] = x[c] - h;
+      residual(xp, Fm);
+      xp[c] = x[c];
+      const VectorXd column = (Fp - Fm) / (2.0 * h);
+      worst = std::max(worst, (J.col(c) - column).lpNorm<Eigen::Infinity>() /
+                                  std::max(1.0, column.lpNorm<Eigen::Infinity>()));
+    }
+    residual(x, Fp);  // the problem's extra unknowns and the charts back at x
+    return worst;
+  }
+
   /// Rounding level of the residual at x: eps max_j sum_k |D_jk| |x_k| (the D rows dominate; it
   /// grows like N^2, so at large N a tight tol may lie below it).
   double rounding_level(const VectorXd& x) const {
@@ -337,17 +484,19 @@ class Collocation {
   }
 
   /// The unknowns of another layout's solution x_other on this layout: g and Lambda
-  /// interpolated spectrally in the other's elements, theta = log(g_e^-1 g) in this layout's
-  /// charts.
+  /// interpolated spectrally in the other's elements (an element's first node from the other's
+  /// element to its right: Lambda jumps at a cable entry), theta = log(g_e^-1 g) in this
+  /// layout's charts; the extra unknowns as they are.
   VectorXd resample(Collocation& other, const VectorXd& x_other) const {
     other.update_charts(x_other);
     VectorXd x(size());
+    x.tail(extra_) = x_other.tail(extra_);
     for (const auto& el : elements_) {
       SE3 chart;
       for (int i = 0; i < el.n; ++i) {
         SE3 g;
         Vector6 La;
-        other.sample(x_other, el.s[i], g, La);
+        other.sample(x_other, el.s[i], i == 0, g, La);
         if (i == 0) chart = g;
         double* xn = x.data() + 12 * (el.offset + i);
         const Vector6 th = i == 0 ? Vector6::Zero() : Vector6((chart.inverse() * g).log());
@@ -364,6 +513,7 @@ class Collocation {
   /// the discretisation error for a resolved solution; comparable to the solution itself for a
   /// spurious root of an under-resolved discretisation.
   double off_grid_residual(const VectorXd& x) {
+    set_extras(x);
     update_charts(x);
     double worst = 0.0;
     using Block = Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor>;
@@ -376,7 +526,8 @@ class Collocation {
       for (int j = 0; j < m; ++j) {
         const Vector6 th = Vector6(values.row(j).head<6>().transpose()).cwiseProduct(theta_scale_);
         const Vector6 La = Vector6(values.row(j).tail<6>().transpose()).cwiseProduct(P_.wrench_scale());
-        const Vector6 xi = P_.strain(La);
+        const double s = el.s.front() + el.half * (1.0 + el.op->mid[j]);
+        const Vector6 xi = el.mask ? P_.strain(La, s, el.mask) : P_.strain(La);
         const SO3 R = charts_[e].rotation() * SO3::exp(th.head<3>());
         const Vector6 r_theta = Vector6(slopes.row(j).head<6>().transpose()) - theta_rate(el, th, xi);
         const Vector6 r_lambda = Vector6(slopes.row(j).tail<6>().transpose()) - lambda_rate(el, R, xi, La);
@@ -393,8 +544,10 @@ class Collocation {
     return m;
   }
 
-  /// Node values of a solution, interface duplicates removed.
+  /// Node values of a solution, interface duplicates removed (the value right of an interface:
+  /// after a cable's entry, as the other schemes report it); sets its extra unknowns in the problem.
   void nodes(const VectorXd& x, std::vector<double>& s, std::vector<SE3>& g, std::vector<Vector6>& Lambda) {
+    set_extras(x);
     update_charts(x);
     s.clear();
     g.clear();
@@ -412,6 +565,28 @@ class Collocation {
   }
 
  private:
+  /// Where node i of an element evaluates the actuator paths: at its s, except the last node,
+  /// just inside the element (a routing's r' jumps at a knot, and the path gives right limits).
+  double probe(const Element& el, int i) const {
+    return i + 1 < el.n ? el.s[i] : el.s[i] - 1e-12 * P_.length();
+  }
+  /// The strain at node i of an element: the tendon law with the element's actuators, the
+  /// closed form xi* + K^-1 Lambda without.
+  Vector6 node_strain(const Element& el, int i, const Vector6& La) const {
+    return el.mask ? P_.strain(La, probe(el, i), el.mask) : P_.strain(La);
+  }
+  /// The extra unknowns (the tail of x) into the problem.
+  void set_extras(const VectorXd& x) {
+    if (extra_) P_.set_extra_unknowns(std::span<const double>(x.data() + node_unknowns(), extra_));
+  }
+  /// Their initial guess into x and the problem.
+  void set_initial_extras(VectorXd& x) {
+    if (!extra_) return;
+    const auto z = P_.extra_initial_guess();
+    for (int j = 0; j < extra_; ++j) x[node_unknowns() + j] = z[j];
+    set_extras(x);
+  }
+
   static Eigen::Map<Vector6> node_theta(double* xn) { return Eigen::Map<Vector6>(xn); }
   static Eigen::Map<Vector6> node_lambda(double* xn) { return Eigen::Map<Vector6>(xn + 6); }
   Vector6 theta(const double* xn) const { return Eigen::Map<const Vector6>(xn).cwiseProduct(theta_scale_); }
@@ -420,10 +595,11 @@ class Collocation {
   }
 
   /// g and Lambda at arclength s by barycentric interpolation of theta and Lambda in the element
-  /// that contains s (the charts must be those of x).
-  void sample(const VectorXd& x, double s, SE3& g, Vector6& Lambda) const {
+  /// that contains s, at an element boundary the one to its right if `right` (the charts must be
+  /// those of x).
+  void sample(const VectorXd& x, double s, bool right, SE3& g, Vector6& Lambda) const {
     std::size_t e = 0;
-    while (e + 1 < elements_.size() && s > elements_[e].s.back()) ++e;
+    while (e + 1 < elements_.size() && (right ? s >= elements_[e].s.back() : s > elements_[e].s.back())) ++e;
     const Element& el = elements_[e];
     Eigen::VectorXd t(1);
     t[0] = std::clamp((s - el.s.front()) / el.half - 1.0, -1.0, 1.0);
@@ -446,7 +622,7 @@ class Collocation {
       const Element& el = elements_[e];
       for (int i = 0; i < el.n; ++i)
         if (!(x.segment<3>(12 * (el.offset + i)).norm() < kChartLimit)) ok = false;
-      if (e + 1 < elements() && e + 1 > first)
+      if (e + 1 < elements() && e + 1 >= first)
         charts_[e + 1] = charts_[e] * SE3::exp(theta(x.data() + 12 * (el.offset + el.n - 1)));
     }
     return ok;
@@ -462,21 +638,25 @@ class Collocation {
   }
 
   /// The node block of node i of element e (not the tip) at its unknowns xn. The Lambda columns
-  /// are exact: (2.104) is linear in xi = xi* + K^-1 Lambda, with d/dxi = dexp^-1_{-theta};
-  /// (2.103)'s ad_xi^T Lambda is bilinear in (xi, Lambda). The theta columns (dexp^-1 in theta,
-  /// the loads through R) by central differences.
+  /// are exact: (2.104) depends on Lambda through xi(Lambda), with d/dxi = dexp^-1_{-theta} and
+  /// dxi/dLambda = StaticProblem::strain_jacobian (K^-1 without actuators; with them the
+  /// linearised tendon law, so that Newton stays quadratic); (2.103)'s ad_xi^T Lambda is bilinear
+  /// in (xi, Lambda); a continuity row with a cable entry, Lambda + F c(xi(Lambda)), has
+  /// I + F dc/dxi dxi/dLambda. The theta columns (dexp^-1 in theta, the loads through R) by
+  /// central differences.
   void node_block(int e, int i, const double* xn, ChebyshevNewtonMatrix::Matrix12& G) const {
     const Element& el = elements_[e];
-    const Vector6 th = theta(xn), La = lambda(xn), xi = P_.strain(La);
+    const Vector6 th = theta(xn), La = lambda(xn), xi = node_strain(el, i, La);
     const Vector6& ws = P_.wrench_scale();
-    const Vector6 slope = P_.strain_slope();
+    // d xi / d (Lambda / wrench scale)
+    const lie::Matrix6 slope = P_.strain_jacobian(xi, probe(el, i), el.mask) * ws.asDiagonal();
     auto step = [&](int c) { return kFdStep * std::max(1.0, std::abs(xn[c])); };
     G.setZero();
     if (i == 0) {
       G.topLeftCorner<6, 6>().setIdentity();  // theta_0 = 0
     } else {  // (2.104)
-      G.block<6, 6>(0, 6) = (-el.half * theta_scale_.cwiseInverse()).asDiagonal() * lie::se3::dexp_inv(-th) *
-                            slope.cwiseProduct(ws).asDiagonal();
+      G.block<6, 6>(0, 6) =
+          (-el.half * theta_scale_.cwiseInverse()).asDiagonal() * (lie::se3::dexp_inv(-th) * slope);
       for (int c = 0; c < 6; ++c) {
         const double h = step(c);
         Vector6 plus = th, minus = th;
@@ -487,9 +667,9 @@ class Collocation {
     }
     if (i + 1 < el.n) {  // (2.103): -(L/2) (ad_xi^T Lambda - W_bar(R))
       for (int c = 0; c < 6; ++c) {
-        const Vector6 unit = Vector6::Unit(c), dxi = slope[c] * Vector6::Unit(c);
-        const Vector6 d = lie::se3::coad_apply(xi, unit) + lie::se3::coad_apply(dxi, La);
-        G.block<6, 1>(6, 6 + c) = (-el.half * ws[c] * d).cwiseQuotient(ws);
+        const Vector6 d = ws[c] * lie::se3::coad_apply(xi, Vector6::Unit(c)) +
+                          lie::se3::coad_apply(Vector6(slope.col(c)), La);
+        G.block<6, 1>(6, 6 + c) = (-el.half * d).cwiseQuotient(ws);
       }
       const SO3 chart = charts_[e].rotation();
       for (int c = 0; c < 3; ++c) {
@@ -501,8 +681,11 @@ class Collocation {
             P_.distributed_load(chart * SO3::exp(plus)) - P_.distributed_load(chart * SO3::exp(minus));
         G.block<6, 1>(6, c) = (el.half / (2.0 * h) * diff).cwiseQuotient(ws);
       }
-    } else {  // continuity
+    } else {  // continuity, with a cable entry: Lambda + F c(xi)
       G.bottomRightCorner<6, 6>().setIdentity();
+      if (el.entry_after)
+        G.bottomRightCorner<6, 6>() += ws.cwiseInverse().asDiagonal() *
+                                       (P_.entry_jump_jacobian(el.s.back(), xi) * slope);
     }
   }
 
@@ -522,12 +705,14 @@ class Collocation {
     }
   }
 
-  /// The rows of node i of element e that depend on the node's own unknowns (and the chart).
-  void local_rows(int e, int i, const double* x, double* out) const {
+  /// The rows of node i of element e that depend on the node's own unknowns (and the chart);
+  /// with `lengths`, adds the node's Clenshaw-Curtis share of each active path's length
+  /// (weight (L_e/2) w_i times |u|; (2.47), (2.53), (2.66)).
+  void local_rows(int e, int i, const double* x, double* out, Lengths* lengths = nullptr) const {
     const Element& el = elements_[e];
     const double* xn = x + 12 * (el.offset + i);
     const Vector6 th = theta(xn), La = lambda(xn);
-    const Vector6 xi = P_.strain(La);
+    const Vector6 xi = node_strain(el, i, La);
     Eigen::Map<Vector6> theta_row(out), lambda_row(out + 6);
     if (i == 0) {
       theta_row = Eigen::Map<const Vector6>(xn);  // theta_0 = 0
@@ -539,8 +724,59 @@ class Collocation {
       lambda_row = -lambda_rate(el, R, xi, La);
     } else if (e + 1 < elements()) {  // continuity; the next element's part is linear
       lambda_row = Eigen::Map<const Vector6>(xn + 6);
+      // A cable entering at the element's end adds its pull: Lambda(b+) = Lambda(b-) + F c(xi(b-)).
+      if (el.entry_after) lambda_row += P_.entry_jump(el.s.back(), xi).cwiseQuotient(P_.wrench_scale());
     } else {
       lambda_row = P_.tip_residual(charts_[e] * SE3::exp(th), La);
+    }
+    if (lengths && el.mask) {
+      const double w = el.half * el.op->weights[i], s = probe(el, i);
+      for (std::size_t k = 0; k < P_.actuators().size(); ++k)
+        if ((el.mask >> k) & 1U) (*lengths)[k] += w * P_.actuators()[k].path.length_rate(s, xi);
+    }
+  }
+
+  /// The border of the Newton matrix (extra unknowns z): the columns dF/dz (node rows and
+  /// length rows) by central differences of the residual, and the length rows' derivatives with
+  /// respect to each node's Lambda in closed form, d|u|/dxi = t^T [-hat(r), I] (u = nu + omega x
+  /// r + r', (2.39)) times dxi/dLambda; the lengths do not depend on theta. xp: a copy of x,
+  /// restored on return, as are the problem's extra unknowns and the charts.
+  void border(const VectorXd& x, VectorXd& xp) {
+    ChebyshevNewtonMatrix& M = *newton_matrix_;
+    const int n = node_unknowns();
+    VectorXd Fp(size()), Fm(size());
+    for (int j = 0; j < extra_; ++j) {
+      const int col = n + j;
+      const double h = kFdStep * std::max(1.0, std::abs(x[col]));
+      xp[col] = x[col] + h;
+      residual(xp, Fp);
+      xp[col] = x[col] - h;
+      residual(xp, Fm);
+      xp[col] = x[col];
+      M.border_columns().col(j) = (Fp.head(n) - Fm.head(n)) / (2.0 * h);
+      M.border_corner().col(j) = (Fp.tail(extra_) - Fm.tail(extra_)) / (2.0 * h);
+    }
+    set_extras(x);
+    update_charts(x);
+    auto& C = M.border_rows();
+    C.setZero();
+    const Vector6& ws = P_.wrench_scale();
+    const auto& actuators = P_.actuators();
+    for (const Element& el : elements_) {
+      if (!el.mask) continue;
+      for (int i = 0; i < el.n; ++i) {
+        const double* xn = x.data() + 12 * (el.offset + i);
+        const double s = probe(el, i), w = el.half * el.op->weights[i] / P_.length();
+        const Vector6 xi = node_strain(el, i, lambda(xn));
+        const lie::Matrix6 slope = P_.strain_jacobian(xi, s, el.mask) * ws.asDiagonal();
+        for (std::size_t k = 0; k < actuators.size(); ++k) {
+          if (!((el.mask >> k) & 1U) || extra_row_[k] < 0) continue;
+          const Vector3 t = actuators[k].path.tangent_vector(s, xi).normalized();
+          Eigen::Matrix<double, 1, 6> grad;  // d|u|/dxi
+          grad << -(t.transpose() * lie::so3::hat(actuators[k].path.offset(s))), t.transpose();
+          C.row(extra_row_[k]).segment<6>(12 * (el.offset + i) + 6) += w * grad * slope;
+        }
+      }
     }
   }
 
@@ -571,6 +807,8 @@ class Collocation {
   }
 
   StaticProblem P_;
+  int extra_ = 0;                                        ///< extra unknowns (after the nodes' in x)
+  std::array<int, StaticProblem::kMaxActuators> extra_row_{};  ///< per actuator: its extra row, or -1
   std::optional<ChebyshevNewtonMatrix> newton_matrix_;
   MatrixXd J_;  ///< the full Newton matrix, only when it is singular (least-squares steps)
   Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor> linear_scratch_;  ///< D X of one element
@@ -597,10 +835,10 @@ class ChebyshevSolver {
     const int N = options_.nodes;
     int E = options_.elements > 0 ? options_.elements : 1;
     const bool automatic = options_.elements <= 0;
-    // Elements of at least kMinElementNodes nodes; when that allows no split and the attempt
-    // failed, elements down to kMinFallbackNodes (small N, e.g. a full circle with N = 5).
-    const int max_elements = std::max(1, (N - 1) / (kMinElementNodes - 1));
-    const int max_fallback_elements = std::max(1, (N - 1) / (kMinFallbackNodes - 1));
+    // Splits keep elements of at least kMinElementNodes nodes on average; when that allows no
+    // split and the attempt failed, down to kMinFallbackNodes (small N, e.g. a full circle with
+    // N = 5). (With actuators the breakpoints' elements are there at every level.)
+    auto can_split = [&](int min_nodes) { return element_count(P_, 2 * E) * (min_nodes - 1) <= N - 1; };
     std::optional<Collocation> best;
     Attempt best_attempt;
     std::string reasons;
@@ -608,17 +846,18 @@ class ChebyshevSolver {
       Collocation C(P_, N, E);
       const bool refining = best && best_attempt.converged;
       Attempt a = refining ? refine(C, *best, best_attempt.x)
-                           : attempt(C, automatic && 2 * E <= max_elements);
+                           : attempt(C, automatic && can_split(kMinElementNodes));
       if (refining && !a.converged) break;  // keep the converged coarser solution
-      const int limit = a.converged ? max_elements : max_fallback_elements;
-      const bool split = automatic && a.rotation > kSplitRotation && 2 * E <= limit;
+      const bool split = automatic && a.rotation > kSplitRotation &&
+                         can_split(a.converged ? kMinElementNodes : kMinFallbackNodes);
       if (a.converged) {
         best.emplace(std::move(C));
         best_attempt = std::move(a);
         if (!split) break;
       } else {
         if (!reasons.empty()) reasons += "; ";
-        reasons += std::to_string(E) + (E == 1 ? " element: " : " elements: ") + a.reason;
+        reasons += std::to_string(C.elements()) + (C.elements() == 1 ? " element: " : " elements: ");
+        reasons += a.reason;
         if (!best) {
           best.emplace(std::move(C));
           best_attempt = std::move(a);
@@ -654,6 +893,7 @@ class ChebyshevSolver {
     out.reason = best_attempt.converged ? "" : reasons;
     out.iterations = iterations_;
     out.residual_norm = best_attempt.residual_norm;
+    check_cables_taut(C.problem(), out);
     if (report) {
       report->elements = C.elements();
       report->factorizations = factorizations_;
@@ -762,14 +1002,38 @@ class ChebyshevSolver {
 
 }  // namespace
 
+namespace {
+
+/// Bad options: std::invalid_argument.
+void check_options(const StaticProblem& problem, const ChebyshevOptions& options) {
+  if (options.nodes < 2) throw std::invalid_argument("chebyshev needs nodes >= 2");
+  const int elements = element_count(problem, std::max(1, options.elements));
+  if (elements > std::max(1, options.nodes - 1)) {
+    const auto breakpoints = problem.breakpoints().size();
+    throw std::invalid_argument(
+        "chebyshev: " + std::to_string(elements) + " elements" +
+        (breakpoints > 0 ? " (one or more per stretch between the " + std::to_string(breakpoints) +
+                               " actuator breakpoints)"
+                         : std::string()) +
+        " need at least " + std::to_string(elements + 1) + " nodes, got " + std::to_string(options.nodes));
+  }
+}
+
+}  // namespace
+
+double chebyshev_newton_matrix_error(const StaticProblem& problem, const ChebyshevOptions& options) {
+  check_options(problem, options);
+  Collocation C(problem, options.nodes, std::max(1, options.elements));
+  VectorXd x = C.reference_guess();
+  C.complete_kinematics(x);
+  int factorizations = 0;
+  C.newton(x, options.tol, options.max_iterations, factorizations);
+  return C.newton_matrix_error(x);
+}
+
 result::StaticResult solve_chebyshev(const StaticProblem& problem, const ChebyshevOptions& options,
                                      ChebyshevReport* report) {
-  if (options.nodes < 2) throw std::invalid_argument("chebyshev needs nodes >= 2");
-  if (options.elements > std::max(1, options.nodes - 1))
-    throw std::invalid_argument("chebyshev: " + std::to_string(options.elements) +
-                                " elements need more than " + std::to_string(options.nodes) + " nodes");
-  if (problem.has_actuators())
-    throw std::invalid_argument("the chebyshev scheme does not support actuators yet; use kinsol or an rkmk-* scheme");
+  check_options(problem, options);
   return ChebyshevSolver(problem, options).run(report);
 }
 

@@ -22,7 +22,8 @@ bool regular_pivots(const LU& lu, double ratio) {
 
 }  // namespace
 
-ChebyshevNewtonMatrix::ChebyshevNewtonMatrix(std::vector<Element> elements) : elements_(std::move(elements)) {
+ChebyshevNewtonMatrix::ChebyshevNewtonMatrix(std::vector<Element> elements, int extra)
+    : elements_(std::move(elements)), extra_(extra) {
   int max_n = 0;
   for (const auto& el : elements_) {
     layout_.push_back({reduced_size_, rho_size_});
@@ -35,6 +36,8 @@ ChebyshevNewtonMatrix::ChebyshevNewtonMatrix(std::vector<Element> elements) : el
   blocks_.assign(nodes_, Matrix12::Zero());
   for (int e = 0; e + 1 < E; ++e) chart_.push_back(MatrixXd::Zero(12 * (nodes_ - elements_[e + 1].first), 6));
   H_.assign(nodes_, Matrix3::Zero());
+  N_.assign(nodes_, Matrix3::Zero());
+  coupled_.assign(nodes_, 0);
   for (const auto& el : elements_) {
     Y_.emplace_back(3 * (el.n - 1), 3 * (el.n - 1));
     rho_lu_.emplace_back(3 * (el.n - 1));
@@ -47,6 +50,17 @@ ChebyshevNewtonMatrix::ChebyshevNewtonMatrix(std::vector<Element> elements) : el
   y_.resize(rho_size_);
   dm_.resize(3 * (max_n - 1));
   drho_.resize(3 * (max_n - 1));
+  if (extra_ > 0) {
+    const int n = 12 * nodes_;
+    border_columns_.setZero(n, extra_);
+    border_rows_.setZero(extra_, n);
+    border_corner_.setZero(extra_, extra_);
+    V_.resize(n, extra_);
+    column_.resize(n);
+    solved_.resize(n);
+    c_.resize(extra_);
+    dz_.resize(extra_);
+  }
 }
 
 template <int R>
@@ -57,6 +71,17 @@ void ChebyshevNewtonMatrix::substitute_moment(const int (&rows)[R], const Eigen:
     const auto y = Y_[e].row(a * (n - 1) + k - 1);
     for (int r = 0; r < R; ++r) S_.row(rows[r]).segment(col, 3 * (n - 1)) -= coeff(r, a) * y;
   }
+  substitute_force<R>(rows, coeff, e, k);
+}
+
+template <int R>
+void ChebyshevNewtonMatrix::substitute_force(const int (&rows)[R], const Eigen::Matrix<double, R, 3>& coeff,
+                                             int e, int k) {
+  const int node = elements_[e].first + k;
+  if (!coupled_[node]) return;
+  const Eigen::Matrix<double, R, 3> on_n = coeff * N_[node];
+  for (int r = 0; r < R; ++r)
+    for (int b = 0; b < 3; ++b) S_(rows[r], n_col(e, k, b)) -= on_n(r, b);
 }
 
 void ChebyshevNewtonMatrix::build_element_systems(bool& regular, double singular_pivot) {
@@ -71,6 +96,8 @@ void ChebyshevNewtonMatrix::build_element_systems(bool& regular, double singular
       const Matrix3 H = G.block<3, 3>(kPhi, kM).inverse();
       if (!H.allFinite()) regular = false;
       H_[el.first + k] = H;
+      coupled_[el.first + k] = !G.block<3, 3>(kPhi, kN).isZero(0.0);
+      if (coupled_[el.first + k]) N_[el.first + k] = H * G.block<3, 3>(kPhi, kN);
       const Matrix3 HG = H * G.block<3, 3>(kPhi, kPhi);
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) {
@@ -126,6 +153,14 @@ void ChebyshevNewtonMatrix::build_reduced() {
     for (int a = 0; a < 3; ++a)
       S_.block(m_row(e, 0, a), phi_col(e, 1, 0), m, 3 * m).noalias() -=
           D.block(0, 1, m, m) * Y_[e].middleRows(a * m, m);
+    // ... and on n_k through N_k (actuators only).
+    for (int k = 1; k < n; ++k) {
+      if (!coupled_[el.first + k]) continue;
+      for (int j = 0; j < l; ++j) {
+        const int rows[3] = {m_row(e, j, 0), m_row(e, j, 1), m_row(e, j, 2)};
+        substitute_force<3>(rows, Matrix3(D(j, k) * Matrix3::Identity()), e, k);
+      }
+    }
     // The m and n rows 0..n-2: the D part on m_0 and on n, the node blocks on their own phi, n,
     // and on m_0 (row 0).
     for (int j = 0; j < l; ++j) {
@@ -158,6 +193,13 @@ void ChebyshevNewtonMatrix::build_reduced() {
             rows.noalias() -= g.asDiagonal() * Y_[e].middleRows(c * m, n - 2);
           }
         }
+      for (int j = 1; j < l; ++j) {  // ... and on n_j through N_j (actuators only)
+        const Matrix12& G = blocks_[el.first + j];
+        const int m_rows[3] = {m_row(e, j, 0), m_row(e, j, 1), m_row(e, j, 2)};
+        const int n_rows[3] = {n_row(e, j, 0), n_row(e, j, 1), n_row(e, j, 2)};
+        substitute_force<3>(m_rows, Matrix3(G.block<3, 3>(kM, kM)), e, j);
+        substitute_force<3>(n_rows, Matrix3(G.block<3, 3>(kN, kM)), e, j);
+      }
     }
     // The last node's six rows (tip conditions or continuity).
     const Matrix12& Gl = blocks_[el.first + l];
@@ -227,12 +269,33 @@ bool ChebyshevNewtonMatrix::factorize(double singular_pivot) {
   build_tip_rho_coupling();
   build_reduced();
   S_lu_.emplace(S_);
-  return regular_pivots(*S_lu_, singular_pivot);
+  if (!regular_pivots(*S_lu_, singular_pivot)) return false;
+  if (extra_ == 0) return true;
+  // (3): V = A^-1 B, and the Schur complement E - C V.
+  for (int j = 0; j < extra_; ++j) {
+    column_ = border_columns_.col(j);
+    solve_nodes(column_, solved_);
+    V_.col(j) = solved_;
+  }
+  schur_lu_.compute(border_corner_ - border_rows_ * V_);
+  return regular_pivots(schur_lu_, singular_pivot);
 }
 
 void ChebyshevNewtonMatrix::solve(const VectorXd& b, VectorXd& x) {
-  const int E = static_cast<int>(elements_.size());
   x.resize(size());
+  solve_nodes(b, x);
+  if (extra_ == 0) return;
+  // (3): dz = (E - C V)^-1 (c - C A^-1 b), dx = A^-1 b - V dz.
+  const int n = 12 * nodes_;
+  c_ = b.tail(extra_);
+  c_.noalias() -= border_rows_ * x.head(n);
+  dz_ = schur_lu_.solve(c_);
+  x.head(n).noalias() -= V_ * dz_;
+  x.tail(extra_) = dz_;
+}
+
+void ChebyshevNewtonMatrix::solve_nodes(const VectorXd& b, VectorXd& x) {
+  const int E = static_cast<int>(elements_.size());
   // dtheta_0 = b_theta,0; y_k = H_k (b_phi,k - D_k0 b_phi,0) (C2); b_rho,i - D_i0 b_rho,0 (1).
   for (int e = 0; e < E; ++e) {
     const Element& el = elements_[e];
@@ -304,6 +367,12 @@ void ChebyshevNewtonMatrix::solve(const VectorXd& b, VectorXd& x) {
     const int n = el.n, m = n - 1, o = layout_[e].rho;
     auto dm = dm_.head(3 * m);
     dm.noalias() = y_.segment(o, 3 * m) - Y_[e] * z_.segment(phi_col(e, 1, 0), 3 * m);
+    for (int k = 1; k < n; ++k) {  // - N_k dn_k (C2)
+      if (!coupled_[el.first + k]) continue;
+      const Vector3 dn(z_[n_col(e, k, 0)], z_[n_col(e, k, 1)], z_[n_col(e, k, 2)]);
+      const Vector3 shift = N_[el.first + k] * dn;
+      for (int a = 0; a < 3; ++a) dm[a * m + k - 1] -= shift[a];
+    }
     for (int i = 0; i < n; ++i) {
       const int node = 12 * (el.first + i);
       for (int a = 0; a < 3; ++a) {
@@ -351,6 +420,12 @@ void ChebyshevNewtonMatrix::assemble(MatrixXd& J) const {
       const int theta_col = 12 * (el.first + el.n - 1);
       J.block(12 * elements_[e + 1].first, theta_col, chart_[e].rows(), 6) += chart_[e];
     }
+  }
+  if (extra_ > 0) {
+    const int n = 12 * nodes_;
+    J.topRightCorner(n, extra_) = border_columns_;
+    J.bottomLeftCorner(extra_, n) = border_rows_;
+    J.bottomRightCorner(extra_, extra_) = border_corner_;
   }
 }
 

@@ -563,21 +563,6 @@ class Driver {
     return report_;
   }
 
-  /// A displacement-controlled cable that needs a negative tension would have to push: it goes
-  /// slack instead, which this model does not represent (as in shooting).
-  static void check_cables_taut(const StaticProblem& P, result::StaticResult& out) {
-    for (std::size_t k = 0; k < P.actuators().size(); ++k) {
-      const auto& a = P.actuators()[k];
-      if (a.kind != ActuatorKind::cable || !a.target_length) continue;
-      const double T = P.axial_force(static_cast<int>(k));
-      if (T < 0.0 && out.converged) {
-        out.converged = false;
-        out.reason = "cable " + std::to_string(k) + " would need a compressive force (" + std::to_string(T) +
-                     " N) to reach its displacement: it goes slack";
-      }
-    }
-  }
-
   static constexpr int kDirectIterations = 15;    // Newton inside its basin needs fewer
   static constexpr int kCorrectorIterations = 8;  // per continuation step
 

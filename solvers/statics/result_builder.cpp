@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace rodlab::solvers::statics {
 
@@ -30,6 +31,19 @@ void fill_static_result(const StaticProblem& problem, std::span<const double> s,
     const double probe = s.size() > 1 ? 0.5 * (s[0] + s[1]) : 0.0;
     const auto mask = problem.has_actuators() ? problem.active_mask(probe) : 0U;
     out.base_wrench = problem.rod_wrench(Lambda.front(), out.centerline.front().twist, s[0], mask);
+  }
+}
+
+void check_cables_taut(const StaticProblem& problem, result::StaticResult& out) {
+  for (std::size_t k = 0; k < problem.actuators().size(); ++k) {
+    const auto& a = problem.actuators()[k];
+    if (a.kind != ActuatorKind::cable || !a.target_length) continue;
+    const double T = problem.axial_force(static_cast<int>(k));
+    if (T < 0.0 && out.converged) {
+      out.converged = false;
+      out.reason = "cable " + std::to_string(k) + " would need a compressive force (" + std::to_string(T) +
+                   " N) to reach its displacement: it goes slack";
+    }
   }
 }
 

@@ -157,26 +157,11 @@ class ShootingSolver {
     out.reason = reason;
     out.iterations = iterations_;
     out.residual_norm = residual;
-    check_cables_taut(out);
+    check_cables_taut(P_, out);
     return out;
   }
 
  private:
-  /// A displacement-controlled cable that needs a negative tension would have to push: it goes
-  /// slack instead, which this model does not represent. Report it rather than a false solution.
-  void check_cables_taut(result::StaticResult& out) const {
-    for (std::size_t k = 0; k < P_.actuators().size(); ++k) {
-      const auto& a = P_.actuators()[k];
-      if (a.kind != ActuatorKind::cable || !a.target_length) continue;
-      const double T = P_.axial_force(static_cast<int>(k));
-      if (T < 0.0 && out.converged) {
-        out.converged = false;
-        out.reason = "cable " + std::to_string(k) + " would need a compressive force (" +
-                     std::to_string(T) + " N) to reach its displacement: it goes slack";
-      }
-    }
-  }
-
   Vector6 base_wrench(const VectorXd& x) const { return x.head<6>().cwiseProduct(P_.wrench_scale()); }
   void set_state(const VectorXd& x) {
     if (extra_) P_.set_extra_unknowns(std::span<const double>(x.data() + 6, extra_));

@@ -28,9 +28,6 @@ result::StaticResult solve_static(const StaticProblem& problem, const StaticSolv
     throw std::invalid_argument("unknown statics scheme '" + options.scheme + "' (valid: " +
                                 scheme_names(Problem::statics) + ")");
   if (options.nodes < 2) throw std::invalid_argument("nodes must be >= 2");
-  if (problem.has_actuators() && !rkmk_method(options.scheme) && options.scheme != "kinsol")
-    throw std::invalid_argument("scheme '" + options.scheme +
-                                "' does not support actuators yet; use kinsol or an rkmk-* scheme");
   const auto start = std::chrono::steady_clock::now();
   result::StaticResult out;
   if (const auto method = rkmk_method(options.scheme)) {

@@ -211,22 +211,49 @@ void StaticProblem::extra_residuals(std::span<const double> lengths, std::span<d
 
 Vector6 StaticProblem::entry_jump(double b, const Vector6& xi_left) const {
   Vector6 jump = Vector6::Zero();
-  for (std::size_t k = 0; k < actuators_.size(); ++k) {
-    const ActuatorTerm& a = actuators_[k];
-    if (a.enters_from_outside() && a.path.s0() == b && b > 0.0)
-      jump += axial_force(static_cast<int>(k)) * a.path.unit_wrench(b, xi_left);
-  }
+  for (std::size_t k = 0; k < actuators_.size(); ++k)
+    if (enters_at(actuators_[k], b))
+      jump += axial_force(static_cast<int>(k)) * actuators_[k].path.unit_wrench(b, xi_left);
   return jump;
+}
+
+bool StaticProblem::has_entry(double b) const {
+  return std::any_of(actuators_.begin(), actuators_.end(),
+                     [b](const ActuatorTerm& a) { return enters_at(a, b); });
+}
+
+Matrix6 StaticProblem::entry_jump_jacobian(double b, const Vector6& xi_left) const {
+  Matrix6 J = Matrix6::Zero();
+  for (std::size_t k = 0; k < actuators_.size(); ++k)
+    if (enters_at(actuators_[k], b))
+      J += axial_force(static_cast<int>(k)) * actuators_[k].path.unit_wrench_jacobian(b, xi_left);
+  return J;
+}
+
+Matrix6 StaticProblem::law_stiffness(double s, Mask mask) const {
+  Matrix6 Kt = model_.K_diag().asDiagonal();
+  for (std::size_t k = 0; k < actuators_.size(); ++k)
+    if ((mask >> k) & 1U && actuators_[k].kind == ActuatorKind::muscle)
+      Kt += transported_stiffness(actuators_[k].embedded_stiffness, actuators_[k].path.offset(s));
+  return Kt;
+}
+
+Matrix6 StaticProblem::strain_jacobian(const Vector6& xi, double s, Mask mask) const {
+  if (mask == 0) return strain_slope().asDiagonal();
+  Matrix6 J = law_stiffness(s, mask);
+  for (std::size_t k = 0; k < actuators_.size(); ++k)
+    if ((mask >> k) & 1U)
+      J += axial_force(static_cast<int>(k)) * actuators_[k].path.unit_wrench_jacobian(s, xi);
+  Matrix6 slope = Matrix6::Zero();
+  if (model_.is_kirchhoff()) slope.topLeftCorner<3, 3>() = J.topLeftCorner<3, 3>().inverse();
+  else slope = J.partialPivLu().inverse();
+  return slope;
 }
 
 Vector6 StaticProblem::strain(const Vector6& Lambda, double s, Mask mask) const {
   if (mask == 0) return strain(Lambda);
   const Vector6& xs = model_.xi_star();
-  Matrix6 Kt = model_.K_diag().asDiagonal();
-  for (std::size_t k = 0; k < actuators_.size(); ++k)
-    if ((mask >> k) & 1U && actuators_[k].kind == ActuatorKind::muscle)
-      Kt += transported_stiffness(actuators_[k].embedded_stiffness, actuators_[k].path.offset(s));
-  return solve_tendon_law(Kt, xs, Lambda, model_.is_kirchhoff(),
+  return solve_tendon_law(law_stiffness(s, mask), xs, Lambda, model_.is_kirchhoff(),
                           [&](const Vector6& xi, Vector6& r, Matrix6& J) {
                             for (std::size_t k = 0; k < actuators_.size(); ++k) {
                               if (!((mask >> k) & 1U)) continue;

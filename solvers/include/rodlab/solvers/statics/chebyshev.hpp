@@ -41,8 +41,10 @@
 // NEWTON. The Jacobian: the D part is exact (linear, constant), and since row j depends
 // nonlinearly only on node j's 12 unknowns (the D coupling aside) the rest is block diagonal,
 // 12 x 12 node blocks: their Lambda columns exact ((2.104) is linear in xi = xi* + K^-1 Lambda,
-// (2.103)'s ad_xi^T Lambda bilinear), their theta columns (dexp^-1 in theta, the loads in R) and
-// the tip node's block by central differences; with elements, the chart blocks too. It is
+// (2.103)'s ad_xi^T Lambda bilinear; with actuators through dxi/dLambda, below), their theta
+// columns (dexp^-1 in theta, the loads in R) and the tip node's block by central differences;
+// with elements, the chart blocks too (the rows of later elements against the last theta of an
+// element, which moves their charts; until session 4 they came out zero, see docs/statics.md). It is
 // factorised by condensation (chebyshev_newton_matrix.hpp): theta_0 is known; the translations
 // rho are solved per element (the Lambda rows see only rotations, so rho reaches other rows only
 // through a clamped tip's position); each node's moment is eliminated through its rotation rows.
@@ -100,7 +102,33 @@
 // converged ("not resolved ..."). Resolved solutions measure <= 0.05 even at N = 12 under 30x
 // gravity; the spurious roots seen measure >= 1.5.
 //
-// Actuators are not supported (solve_static rejects them for this scheme).
+// ACTUATORS (docs/statics.md; StaticProblem, actuator_term.hpp). The strain is the tendon law
+// K (xi - xi*) + sum_k [F_k c_k(xi) + K_mus,k (xi - xi*)] = Lambda over the actuators active at s
+// (StaticProblem::strain, a Newton solve per node); it and the routing r(s) make the strain
+// non-smooth at the breakpoints (span ends, routing knots, cable entries), which would cost the
+// collocation its spectral convergence. So element boundaries sit at every breakpoint: each
+// stretch between breakpoints is split into ceil(E l / L) equal elements (E the level above: 1,
+// then doubled for large rotations), and the N - 1 intervals are shared among the elements in
+// proportion to (l_e / L)^(1/2), at least 2 each when N allows, else 1 (N >= breakpoints + 2,
+// else std::invalid_argument). Each element has one active set; its nodes evaluate the paths at
+// their s, the last one just inside the element (r' jumps at a knot). Interface conditions: g
+// is continuous by the charts; the last row of an element is Lambda continuity, except where a
+// cable enters the rod (pulled from outside), where Lambda(b+) = Lambda(b-) + F c(xi(b-))
+// (StaticProblem::entry_jump, as kinsol and shooting; the strain is continuous there). A result
+// node at an interface reports the value right of it, after the entry, as kinsol does.
+// Newton matrix: dxi/dLambda is StaticProblem::strain_jacobian (the inverse of the law's
+// Jacobian K + sum F dc/dxi + K_mus; its moment block for Kirchhoff rods), which couples the
+// rotation rows to the force n (handled in the condensation, chebyshev_newton_matrix.hpp), and
+// an entry row has I + F dc/dxi dxi/dLambda. Actuators with an unknown (a displacement- or
+// volume-controlled force, a muscle's length Delta; StaticProblem::extra_unknowns) add q unknowns
+// after the nodes' and q rows, StaticProblem::extra_residuals of the path lengths
+// int |u| ds (2.47), (2.53), (2.66)-(2.67), by Clenshaw-Curtis quadrature on each element's
+// nodes (spectral like the collocation: |u| is smooth inside an element). They border the
+// Newton matrix: their columns by central differences of the residual, the length rows'
+// Lambda entries in closed form (d|u|/dxi = t^T [-hat(r), I] times dxi/dLambda), solved by a
+// Schur complement. chebyshev_newton_matrix_error checks the whole matrix against differences
+// (8e-12 .. 2e-10 with actuators; 2e-3 .. 6e-2 if the tendon law's Jacobian is left out). A
+// displacement-controlled cable that would have to push is reported as slack (not converged).
 #include "rodlab/result/static_result.hpp"
 #include "rodlab/solvers/statics/static_problem.hpp"
 
@@ -110,7 +138,8 @@ struct ChebyshevOptions {
   int nodes = 24;          ///< N, distinct nodes including both ends (>= 2)
   double tol = 1e-10;      ///< on the scaled residual's inf-norm
   int max_iterations = 50; ///< Newton iterations per solve (each continuation step is a solve)
-  int elements = 0;        ///< 0: automatic (see above); > 0: exactly that many elements
+  int elements = 0;        ///< 0: automatic (see above); > 0: that level E (exactly E elements
+                           ///< without actuator breakpoints)
 };
 
 /// Diagnostics that the result type does not carry.
@@ -120,8 +149,15 @@ struct ChebyshevReport {
   double max_chart_rotation = 0.0; ///< max |omega(theta)| over the nodes of the returned solution
 };
 
+/// For tests: the Newton matrix (exact D part, closed-form and differenced node blocks, chart
+/// blocks, border) at the Newton iterate reached on the layout of level max(1, elements) from the
+/// direct guess, against central differences of the whole residual: max over columns c of
+/// |J_c - J_fd,c|_inf / max(1, |J_fd,c|_inf). Small (~1e-8) when Newton's steps are exact.
+double chebyshev_newton_matrix_error(const StaticProblem& problem, const ChebyshevOptions& options);
+
 /// Solves the problem; non-convergence is reported in the result (reason), never thrown.
-/// Throws std::invalid_argument for nodes < 2, too many elements for the nodes, or actuators.
+/// Throws std::invalid_argument for nodes < 2 or too many elements for the nodes (with actuators:
+/// fewer than breakpoints + 2 nodes).
 result::StaticResult solve_chebyshev(const StaticProblem& problem, const ChebyshevOptions& options,
                                      ChebyshevReport* report = nullptr);
 

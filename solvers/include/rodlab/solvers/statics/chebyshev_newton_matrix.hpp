@@ -11,12 +11,17 @@
 // plus -I_6 from a continuity row to the next element's first Lambda; node_block(k) (12 x 12)
 // is the derivative of node k's rows, the D part excluded, with respect to node k's unknowns;
 // chart_block(e) is the derivative of the rows of every node after element e with respect to
-// theta of e's last node, which moves the charts of all later elements.
+// theta of e's last node, which moves the charts of all later elements. With actuators that
+// have an unknown (docs/statics.md: a length-controlled force, a muscle's length) the q extra
+// unknowns z and their q length rows border the matrix: border_columns() (12N x q, the node
+// rows' derivatives with respect to z), border_rows() (q x 12N) and border_corner() (q x q).
 //
 // STRUCTURE USED. (a) The rows theta_0 = 0 have the node block [I_6 0]. (b) The phi rows,
-// (2.104)'s rotation part D phi = (L/2) A^-1(phi) omega (A = so3 dexp), involve only phi and m;
-// their block d/dm = -(L/2) A^-1(phi) K_omega^-1 (scaled) is invertible for Cosserat and
-// Kirchhoff rods alike (for Kirchhoff rods only the force is a constraint force). (c) The Lambda
+// (2.104)'s rotation part D phi = (L/2) A^-1(phi) omega (A = so3 dexp), involve only phi and
+// Lambda (through omega); their block d/dm = -(L/2) A^-1(phi) d omega/dm (scaled; K_omega^-1
+// without actuators) is invertible for Cosserat and Kirchhoff rods alike (for Kirchhoff rods
+// only the force is a constraint force). Without actuators omega does not depend on n; with
+// actuators the tendon law couples them (G_phi,n != 0). (c) The Lambda
 // rows depend on theta only through the rotation (loads are dead or follow the body), so rho
 // enters rows other than its own only through the clamped tip's position rows, directly and
 // through the charts (six tip rows at most).
@@ -30,14 +35,18 @@
 //     Z = T_rho A^-1 (6 x 3(n-1), six transposed solves) the tip rows gain -Z G_rho,x on x and
 //     -Z b_rho on the right-hand side.                                                     (C1)
 // (2) m_k, k >= 1: the phi row k gives, with H_k = G_phi,m(k)^-1,
-//         dm_k = y_k - sum_{l>=1} Y_kl dphi_l,
-//         y_k = H_k (b_phi,k - D_k0 dphi_0),  Y_kl = H_k (D_kl I_3 + delta_kl G_phi,phi(k)),   (C2)
+//         dm_k = y_k - sum_{l>=1} Y_kl dphi_l - N_k dn_k,
+//         y_k = H_k (b_phi,k - D_k0 dphi_0),  Y_kl = H_k (D_kl I_3 + delta_kl G_phi,phi(k)),
+//         N_k = H_k G_phi,n(k)  (zero without actuators, and then skipped),              (C2)
 //     substituted into every row holding m_k: the m rows (coefficient D_jk I_3 + delta_jk
 //     G_m,m(j), whose D part gives (D (x) I_3) Y, one (n-1)^2 by (n-1) x 3(n-1) product per
 //     component), the n rows, the last rows and the tip rows of (C1).
 // What is left, per element: unknowns phi_1..n-1, m_0, n_0..n-1 and rows m, n 0..n-2 plus the
 // six last rows, 6n of each: S dz = b_S, factorised by PartialPivLU. A solve forms b_S from b
-// (y, Z, D products), solves S, recovers dm_k by (C2) and drho by (1). At N = 24 the LUs are of
+// (y, Z, D products), solves S, recovers dm_k by (C2) and drho by (1).
+// (3) The border (extra unknowns z, rows r): with A the node part above, [A B; C E] [dx; dz] =
+// [b; c] is solved by the Schur complement: V = A^-1 B (q solves per factorisation),
+// (E - C V) dz = c - C A^-1 b (a q x q LU), dx = A^-1 b - V dz. At N = 24 the LUs are of
 // 144 and 69 instead of 288: about a seventh of the flops (measured on one core, quiet: 0.15 and
 // 0.02 ms against 1.05 ms), and a solve costs ~8 us.
 //
@@ -63,13 +72,18 @@ class ChebyshevNewtonMatrix {
     const Eigen::MatrixXd* D;
   };
 
-  explicit ChebyshevNewtonMatrix(std::vector<Element> elements);
+  /// `extra`: the number q of bordering unknowns and rows (0 without them).
+  explicit ChebyshevNewtonMatrix(std::vector<Element> elements, int extra = 0);
 
-  int size() const { return 12 * nodes_; }
+  int size() const { return 12 * nodes_ + extra_; }
   Matrix12& node_block(int k) { return blocks_[k]; }
   const Matrix12& node_block(int k) const { return blocks_[k]; }
   /// 12 (nodes after element e) x 6; only for e + 1 < elements.
   Eigen::MatrixXd& chart_block(int e) { return chart_[e]; }
+  /// The border (extra > 0): d(node rows)/dz, d(extra rows)/d(node unknowns), d(extra rows)/dz.
+  Eigen::MatrixXd& border_columns() { return border_columns_; }
+  Eigen::MatrixXd& border_rows() { return border_rows_; }
+  Eigen::MatrixXd& border_corner() { return border_corner_; }
 
   /// Condenses and factorises. False if the matrix is singular (some pivot ratio below
   /// `singular_pivot`, or not finite): solve() must not be used then.
@@ -104,20 +118,30 @@ class ChebyshevNewtonMatrix {
   void build_element_systems(bool& regular, double singular_pivot);  ///< H, Y, A_e
   void build_tip_rho_coupling();                                        ///< Z
   void build_reduced();                                                 ///< S
+  /// The node part of solve(): x's first 12N entries from b's (x sized already).
+  void solve_nodes(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// Rows `rows` of S get -coeff N_k on n_k (the n part of (C2)), when node k is coupled.
+  template <int R>
+  void substitute_force(const int (&rows)[R], const Eigen::Matrix<double, R, 3>& coeff, int e, int k);
 
   std::vector<Element> elements_;
   std::vector<Layout> layout_;
-  int nodes_ = 0, reduced_size_ = 0, rho_size_ = 0;
+  int nodes_ = 0, reduced_size_ = 0, rho_size_ = 0, extra_ = 0;
   std::vector<Matrix12> blocks_;
   std::vector<Eigen::MatrixXd> chart_;
   std::vector<Eigen::Matrix3d> H_;                            ///< per node (k >= 1 of each element)
+  std::vector<Eigen::Matrix3d> N_;                            ///< per node: H G_phi,n (C2)
+  std::vector<char> coupled_;                                 ///< per node: G_phi,n != 0
   std::vector<RowMajorMatrix> Y_;                             ///< per element, 3(n-1) square
   std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> rho_lu_;  ///< A_e
   Eigen::MatrixXd Z_;                                         ///< 6 x rho unknowns: T_rho A^-1
   Eigen::MatrixXd S_;
   std::optional<Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>>> S_lu_;  ///< in place in S_
+  // The border (3): V = A^-1 B and the Schur complement's LU.
+  Eigen::MatrixXd border_columns_, border_rows_, border_corner_, V_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> schur_lu_;
   // Solve scratch.
-  Eigen::VectorXd b_reduced_, z_, b_rho_, y_, dm_, drho_;
+  Eigen::VectorXd b_reduced_, z_, b_rho_, y_, dm_, drho_, column_, solved_, c_, dz_;
 };
 
 }  // namespace rodlab::solvers::statics

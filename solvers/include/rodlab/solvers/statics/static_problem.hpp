@@ -91,10 +91,19 @@ class StaticProblem {
   /// there are pulled from outside, so the strain is continuous and Lambda gains F c(xi).
   Vector6 entry_jump(double b, const Vector6& xi_left) const;
 
+  /// Whether a cable enters the rod at the breakpoint b (entry_jump is then not zero in general).
+  bool has_entry(double b) const;
+  /// d entry_jump(b, xi) / d xi: sum over the cables entering at b of F_k dc_k/dxi.
+  lie::Matrix6 entry_jump_jacobian(double b, const Vector6& xi_left) const;
+
   /// Strain from internal wrench with the actuators in `mask` active:
   /// K (xi - xi*) + sum_k [F_k c_k(xi) + K_mus,k (xi - xi*)] = Lambda, solved by Newton
   /// (Kirchhoff: omega only, nu = nu*). Without actuators it is the closed form below.
   Vector6 strain(const Vector6& Lambda, double s, Mask mask) const;
+  /// d xi / d Lambda of strain(Lambda, s, mask) at its solution xi (implicit function theorem):
+  /// the inverse of the law's Jacobian J = K + sum_k [F_k dc_k/dxi + K_mus,k]; for Kirchhoff rods
+  /// (nu = nu* held) the inverse of J's moment block, zero on the force columns and nu rows.
+  lie::Matrix6 strain_jacobian(const Vector6& xi, double s, Mask mask) const;
   /// The rod's own internal wrench (without the actuators') at s.
   Vector6 rod_wrench(const Vector6& Lambda, const Vector6& xi, double s, Mask mask) const;
 
@@ -139,6 +148,13 @@ class StaticProblem {
   const Vector6& wrench_scale() const { return wrench_scale_; }
 
  private:
+  /// K plus the transported stiffness of the muscles in `mask` at s: the law's linear part.
+  lie::Matrix6 law_stiffness(double s, Mask mask) const;
+  /// A cable that enters the rod at b > 0 (pulled from outside there).
+  static bool enters_at(const ActuatorTerm& a, double b) {
+    return a.enters_from_outside() && a.path.s0() == b && b > 0.0;
+  }
+
   rod::RodModel model_;
   SE3 base_;
   std::string name_;
