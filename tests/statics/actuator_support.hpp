@@ -1,7 +1,8 @@
 #pragma once
-// Shared by the actuator tests of tests/statics (test_actuators.cpp for the shooting schemes,
-// test_kinsol_actuators.cpp for kinsol): the Table 2.1 rod, straight tendon paths, a checked
-// solve, and the closed form of a constant twist.
+// Shared by the actuator tests of tests/statics (test_actuators.cpp: closed forms for every
+// scheme and the shooting schemes' orders; test_kinsol_actuators.cpp, test_chebyshev_actuators.cpp):
+// the Table 2.1 rod, straight tendon paths, a checked solve, and the closed form of a constant
+// twist.
 #include <boost/test/unit_test.hpp>
 
 #include <Eigen/Dense>

@@ -16,9 +16,11 @@ namespace tt = boost::test_tools;
 
 namespace {
 
-const char* const kShootingSchemes[] = {"rkmk-euler-explicit", "rkmk-euler-implicit",
-                                         "rkmk-midpoint-explicit", "rkmk-midpoint-implicit",
-                                         "rkmk-rk4"};
+/// The closed forms below hold for every statics scheme (a constant twist is exact for each).
+const char* const kEveryScheme[] = {"rkmk-euler-explicit",    "rkmk-euler-implicit",
+                                    "rkmk-midpoint-explicit", "rkmk-midpoint-implicit",
+                                    "rkmk-rk4",               "chebyshev",
+                                    "kinsol"};
 
 }  // namespace
 
@@ -36,7 +38,7 @@ BOOST_AUTO_TEST_CASE(straight_cable_gives_constant_curvature) {
     P.add_actuator(a);
     lie::Vector6 xi;
     xi << 0, T * d / EI, 0, 0, 0, 1 - T / EA;
-    for (const char* scheme : kShootingSchemes) check_constant_twist(solve(P, scheme, 21), xi, 1e-10);
+    for (const char* scheme : kEveryScheme) check_constant_twist(solve(P, scheme, 21), xi, 1e-10);
   }
 }
 
@@ -49,7 +51,7 @@ BOOST_AUTO_TEST_CASE(straight_cable_kirchhoff) {
   P.add_actuator(a);
   lie::Vector6 xi;
   xi << 0, 0.5 * 0.004 / m.K_diag()[1], 0, 0, 0, 1;
-  check_constant_twist(solve(P, "rkmk-rk4", 21), xi, 1e-10);
+  for (const char* scheme : kEveryScheme) check_constant_twist(solve(P, scheme, 21), xi, 1e-10);
 }
 
 // Reference: a straight fluidic chamber at r = [0, e, 0] with pressure P acts as a tendon with
@@ -65,7 +67,7 @@ BOOST_AUTO_TEST_CASE(straight_fluidic_chamber_extends_and_bends_away) {
   P.add_actuator(a);
   lie::Vector6 xi;
   xi << P_in * Ac * e / m.K_diag()[0], 0, 0, 0, 0, 1 + P_in * Ac / m.K_diag()[5];
-  check_constant_twist(solve(P, "rkmk-rk4", 11), xi, 1e-12);
+  for (const char* scheme : kEveryScheme) check_constant_twist(solve(P, scheme, 11), xi, 1e-12);
   // The chamber is on +y and the rod bends away from it (towards -y).
   BOOST_TEST(solve(P, "rkmk-rk4", 11).centerline.back().pose.translation().y() < 0.0);
 }
@@ -81,7 +83,7 @@ BOOST_AUTO_TEST_CASE(opposite_cables_sum_to_compression) {
   }
   lie::Vector6 xi;
   xi << 0, 0, 0, 0, 0, 1 - 1.4 / m.K_diag()[5];
-  check_constant_twist(solve(P, "rkmk-midpoint-explicit", 11), xi, 1e-12);
+  for (const char* scheme : kEveryScheme) check_constant_twist(solve(P, scheme, 11), xi, 1e-12);
 }
 
 // Reference: displacement control (2.47) inverts tension control. With the closed form above,
@@ -96,7 +98,7 @@ BOOST_AUTO_TEST_CASE(displacement_control_recovers_the_tension) {
   a.input = kL - (nu_z - kappa * d) * kL;  // displacement
   a.target_length = 0.0;                   // marks length control; add_actuator sets it
   P.add_actuator(a);
-  for (const char* scheme : kShootingSchemes) {
+  for (const char* scheme : kEveryScheme) {
     const auto r = solve(P, scheme, 21);
     lie::Vector6 xi;
     xi << 0, kappa, 0, 0, 0, nu_z;
@@ -111,9 +113,11 @@ BOOST_AUTO_TEST_CASE(slack_cable_is_reported) {
   a.input = -0.001;  // let the cable out by 1 mm: it would have to push the rod
   a.target_length = 0.0;
   P.add_actuator(a);
-  const auto r = solve_static(P, {"rkmk-rk4", 21, 1e-12, 50});
-  BOOST_TEST(!r.converged);
-  BOOST_TEST(r.reason.find("slack") != std::string::npos, r.reason);
+  for (const char* scheme : kEveryScheme) {
+    const auto r = solve_static(P, {scheme, 21, 1e-12, 50});
+    BOOST_TEST(!r.converged, scheme);
+    BOOST_TEST(r.reason.find("slack") != std::string::npos, scheme << ": " << r.reason);
+  }
 }
 
 // Reference: the muscle's fixed point (2.64)-(2.67). A straight muscle at r = [d, 0, 0] with its
@@ -143,7 +147,7 @@ BOOST_AUTO_TEST_CASE(muscle_fixed_point) {
   P.add_actuator(a);
   lie::Vector6 xi;
   xi << 0, sol[0], 0, 0, 0, 1 + sol[1];
-  for (const char* scheme : {"rkmk-euler-explicit", "rkmk-rk4"}) check_constant_twist(solve(P, scheme, 11), xi, 1e-10);
+  for (const char* scheme : kEveryScheme) check_constant_twist(solve(P, scheme, 11), xi, 1e-10);
   BOOST_TEST(sol[0] > 0.0);  // the contracting muscle bends the rod towards itself
 }
 

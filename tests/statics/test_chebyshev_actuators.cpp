@@ -6,9 +6,9 @@
 // the tendon law linearised in the Newton matrix, entry jumps, and extra unknowns with
 // Clenshaw-Curtis path lengths. The Table 2.1 rod (E = 1 MPa, G = 0.33 MPa, D = 1 cm, L = 10 cm).
 //
-// References: closed forms where they exist (constant strain: a straight cable, a straight
-// chamber, displacement control, the muscle's fixed point; piecewise constant strain at a span
-// end); otherwise the cases of test_kinsol_actuators.cpp against rkmk-rk4 at N = 401 (against
+// References: the closed forms of constant strain (a straight cable, a straight chamber,
+// displacement control and slack, the muscle's fixed point) are in test_actuators.cpp, which
+// runs them for every statics scheme; here piecewise constant strain at a span end; otherwise the cases of test_kinsol_actuators.cpp against rkmk-rk4 at N = 401 (against
 // which kinsol's errors are 5e-12 .. 3e-11 m at N = 81) and kinsol at N = 81; the Newton matrix
 // against central differences of the residual.
 
@@ -92,32 +92,6 @@ void check_spectral(const StaticProblem& P, const char* what) {
 
 }  // namespace
 
-// Reference (closed form, test_actuators): a straight cable at r = [d, 0, 0] with tension T and
-// no other load is a circular arc, E I kappa_y = T d, E A (nu_z - 1) = -T; Kirchhoff: nu = nu*.
-// T = 3 N bends the tip by 2.44 rad (more than 2 pi / 3: two elements). Constant strain makes
-// theta linear, which the collocation represents exactly.
-BOOST_AUTO_TEST_CASE(straight_cable_gives_constant_curvature) {
-  const auto m = table21();
-  const double d = 0.004, EI = m.K_diag()[1], EA = m.K_diag()[5];
-  for (double T : {0.5, 3.0}) {
-    StaticProblem P(m, lie::SE3::identity());
-    auto a = straight(ActuatorKind::cable, d, 0.0);
-    a.input = T;
-    P.add_actuator(a);
-    lie::Vector6 xi;
-    xi << 0, T * d / EI, 0, 0, 0, 1 - T / EA;
-    check_constant_twist(solve(P, "chebyshev", 11), xi, 1e-10);
-  }
-  const auto mk = table21(rod::ModelKind::kirchhoff);
-  StaticProblem P(mk, lie::SE3::identity());
-  auto a = straight(ActuatorKind::cable, d, 0.0);
-  a.input = 0.5;
-  P.add_actuator(a);
-  lie::Vector6 xi;
-  xi << 0, 0.5 * d / mk.K_diag()[1], 0, 0, 0, 1;
-  check_constant_twist(solve(P, "chebyshev", 11), xi, 1e-10);
-}
-
 // Reference (closed form): a cable on [0, s1] anchored at s1 = 0.0613 (a span end, a breakpoint
 // off the Chebyshev nodes of one element) with no other load: Lambda = 0 everywhere, so the
 // strain is the arc's up to s1 and xi* beyond; g(s) = exp(s xi) for s <= s1, exp(s1 xi)
@@ -141,73 +115,6 @@ BOOST_AUTO_TEST_CASE(span_end_gives_piecewise_constant_strain) {
     BOOST_TEST((node.twist - (node.s < s1 ? xi : m.xi_star())).norm() <= 1e-10, "s = " << node.s);
   }
   BOOST_TEST(saw_s1, "a node at the span end");
-}
-
-// Reference (closed form): a straight chamber at r = [0, e, 0] under pressure P is a tendon with
-// F = -P A_c: E I kappa_x = P A_c e, E A (nu_z - 1) = P A_c.
-BOOST_AUTO_TEST_CASE(fluidic_chamber_under_pressure) {
-  const auto m = table21();
-  const double e = 0.003, Ac = std::numbers::pi * 1e-6, P_in = 2e4;
-  StaticProblem P(m, lie::SE3::identity());
-  auto a = straight(ActuatorKind::fluidic, 0.0, e);
-  a.chamber_area = Ac;
-  a.input = P_in;
-  P.add_actuator(a);
-  lie::Vector6 xi;
-  xi << P_in * Ac * e / m.K_diag()[0], 0, 0, 0, 0, 1 + P_in * Ac / m.K_diag()[5];
-  check_constant_twist(solve(P, "chebyshev", 11), xi, 1e-12);
-}
-
-// Reference (closed form, test_actuators): displacement control recovers the tension of the
-// straight cable, the force an extra unknown with the Clenshaw-Curtis path length (exact here:
-// |u| is constant). A displacement that needs a pushing cable is reported as slack.
-BOOST_AUTO_TEST_CASE(displacement_control_and_slack) {
-  const auto m = table21();
-  const double d = 0.004, T = 0.5, EI = m.K_diag()[1], EA = m.K_diag()[5];
-  const double kappa = T * d / EI, nu_z = 1 - T / EA;
-  StaticProblem P(m, lie::SE3::identity());
-  auto a = straight(ActuatorKind::cable, d, 0.0);
-  a.input = kL - (nu_z - kappa * d) * kL;
-  a.target_length = 0.0;
-  P.add_actuator(a);
-  lie::Vector6 xi;
-  xi << 0, kappa, 0, 0, 0, nu_z;
-  check_constant_twist(solve(P, "chebyshev", 11), xi, 1e-10);
-
-  StaticProblem S(m, lie::SE3::identity());
-  auto b = straight(ActuatorKind::cable, d, 0.0);
-  b.input = -0.001;
-  b.target_length = 0.0;
-  S.add_actuator(b);
-  const auto r = solve_static(S, {"chebyshev", 11, 1e-12, 50});
-  BOOST_TEST(!r.converged);
-  BOOST_TEST(r.reason.find("slack") != std::string::npos, r.reason);
-}
-
-// Reference (closed form, test_actuators): the muscle's fixed point (2.64)-(2.67). A straight
-// muscle at r = [d, 0, 0] with stiffness K_a and F = g q - k (Delta - Delta*)/Delta*, no load:
-//   (E I + E I_a + d^2 E A_a) kappa - d E A_a e - F d = 0,
-//   -d E A_a kappa + (E A + E A_a) e + F = 0,   F = g q - k (e - kappa d).
-// Delta is the extra unknown, its condition the Clenshaw-Curtis length.
-BOOST_AUTO_TEST_CASE(muscle_fixed_point) {
-  const auto m = table21();
-  const double d = 0.003, gain = 0.2, q = 1.5, k = 0.8;
-  const auto pa = rod::properties(rod::Circle{0.001});
-  const double Ea = 5e6;
-  const double EIa = Ea * pa.Ix, EAa = Ea * pa.A, EI = m.K_diag()[1], EA = m.K_diag()[5];
-  Eigen::Matrix2d A;
-  A << EI + EIa + d * d * EAa - k * d * d, -d * EAa + k * d,  //
-      -d * EAa + k * d, EA + EAa - k;
-  const Eigen::Vector2d sol = A.partialPivLu().solve(Eigen::Vector2d(gain * q * d, -gain * q));
-  StaticProblem P(m, lie::SE3::identity());
-  auto a = straight(ActuatorKind::muscle, d, 0.0);
-  a.input = q;
-  a.law = loads::make_muscle_law("linear", gain, k);
-  a.embedded_stiffness << Ea * pa.Ix, Ea * pa.Iy, Ea / 2.6 * pa.Jt, Ea / 2.6 * pa.A, Ea / 2.6 * pa.A, Ea * pa.A;
-  P.add_actuator(a);
-  lie::Vector6 xi;
-  xi << 0, sol[0], 0, 0, 0, 1 + sol[1];
-  check_constant_twist(solve(P, "chebyshev", 11), xi, 1e-10);
 }
 
 // Reference: the Newton matrix (closed-form Lambda columns through the linearised tendon law,
