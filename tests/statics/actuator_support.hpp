@@ -34,6 +34,11 @@ inline result::StaticResult solve(const StaticProblem& P, const char* scheme, in
   return r;
 }
 
+/// The tip position of a result.
+inline lie::Vector3 tip(const result::StaticResult& r) {
+  return r.centerline.back().pose.translation();
+}
+
 /// Every node has the twist xi and the pose exp(s xi) (2.78), to tol (positions to tol L).
 inline void check_constant_twist(const result::StaticResult& r, const lie::Vector6& xi,
                                  double tol) {

@@ -31,8 +31,6 @@ using namespace rodlab::testing::actuators;
 
 namespace {
 
-lie::Vector3 tip(const result::StaticResult& r) { return r.centerline.back().pose.translation(); }
-
 StaticProblem under_gravity(rod::ModelKind kind = rod::ModelKind::cosserat) {
   StaticProblem P(table21(kind), lie::SE3::identity());
   P.set_gravity(loads::Gravity(P.model(), lie::Vector3(-9.81, 0, 0)));

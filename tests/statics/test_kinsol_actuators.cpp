@@ -20,8 +20,6 @@ using namespace rodlab::testing::actuators;
 
 namespace {
 
-lie::Vector3 tip(const result::StaticResult& r) { return r.centerline.back().pose.translation(); }
-
 /// Observed orders of kinsol's tip error against rkmk-rk4 at N = 401 over N = 21, 41, 81.
 void check_order_four(const StaticProblem& P, const char* what) {
   const lie::Vector3 ref = tip(solve(P, "rkmk-rk4", 401));
