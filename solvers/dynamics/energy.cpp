@@ -1,5 +1,7 @@
 #include "rodlab/solvers/dynamics/energy.hpp"
 
+#include <algorithm>
+
 #include "rodlab/rod/energies.hpp"
 
 namespace rodlab::solvers::dynamics {
@@ -39,6 +41,39 @@ double gravity_energy(const DynamicProblem& problem, std::span<const SE3> g, dou
     const double s = ds * static_cast<double>(j);
     const Vector3 p_ref = rod::reference_pose(model, base, s).translation();
     return -w.dot(g[j].translation() - p_ref);
+  });
+}
+
+double kinetic_energy(std::span<const lie::Matrix6> inertia, std::span<const Vector6> eta,
+                      double ds) {
+  return trapezoid(eta.size(), ds,
+                   [&](std::size_t j) { return 0.5 * eta[j].dot(inertia[j] * eta[j]); });
+}
+
+double embedded_strain_energy_segments(const DynamicProblem& problem,
+                                       std::span<const Vector6> xi, double ds) {
+  double sum = 0.0;
+  for (std::size_t j = 0; j < xi.size(); ++j)
+    sum += problem.embedded_strain_density(xi[j], (static_cast<double>(j) + 0.5) * ds);
+  return sum * ds;
+}
+
+double embedded_strain_energy_nodes(const DynamicProblem& problem, std::span<const Vector6> xi,
+                                    double ds) {
+  return trapezoid(xi.size(), ds, [&](std::size_t j) {
+    return problem.embedded_strain_density(xi[j], static_cast<double>(j) * ds);
+  });
+}
+
+double embedded_gravity_energy(const DynamicProblem& problem, std::span<const SE3> g, double ds) {
+  const double L = problem.length();
+  const auto& model = problem.model();
+  return trapezoid(g.size(), ds, [&](std::size_t j) {
+    const double s = ds * static_cast<double>(j);
+    const double a = std::max(0.0, s - 0.5 * ds), b = std::min(L, s + 0.5 * ds);
+    // the node's cell [a, b] is its trapezoid weight
+    return problem.embedded_gravity_density(g[j], rod::reference_pose(model, problem.base(), s),
+                                            a, b, s);
   });
 }
 

@@ -40,6 +40,9 @@ class IdaReference final : public Stepper {
         [this](double t, const ConstRef& y, const ConstRef& yp, Eigen::Ref<Vector> r) {
           rod_.rhs(t, y, r);
           r = yp - r;
+          // muscle lengths: algebraic, Delta - L(y) (semi_discrete_rod.hpp)
+          const int m = rod_.unknown_size();
+          if (m > 0) rod_.actuator_rows(t, y, y.tail(m), r.tail(m));
         },
         [this](double t, double cj, const ConstRef& y, const ConstRef&, const ConstRef&,
                IdaSolver::SparseMatrix& J) { rod_.newton_matrix(t, y, cj, 1.0, J); },
@@ -86,6 +89,19 @@ class IdaReference final : public Stepper {
   double max_det_deviation() const override { return rod_.max_det_deviation(); }
 
   std::vector<result::CenterlineSample> centerline() const override { return rod_.centerline(); }
+
+  std::vector<ActuatorReading> actuator_readings() const override {
+    const int m = rod_.unknown_size();
+    std::vector<ActuatorReading> out(m);
+    if (m == 0) return out;
+    const auto y = ida_->y();
+    Vector r(rod_.size());
+    rod_.rhs(ida_->time(), y, r);  // the forces at the current state
+    const auto& which = rod_.problem().unknown_actuators();
+    for (int e = 0; e < m; ++e)
+      out[e] = {which[e], y[rod_.unknown_index() + e], rod_.last_forces()[which[e]]};
+    return out;
+  }
 
  private:
   SemiDiscreteRod rod_;

@@ -33,7 +33,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
                               const ImplicitMidpointCollocationOptions& options,
                               std::span<const SE3> g0)
       : rod_(problem, options.nodes, "implicit-midpoint-collocation", true),
-        kinsol_(rod_.kirchhoff() ? rod_.constrained_pattern() : rod_.pattern(false)) {
+        kinsol_(constrained() ? rod_.constrained_pattern() : rod_.pattern(false)) {
     if (!(options.tol > 0.0))
       throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");
     if (options.max_iterations < 1 || options.max_setup_calls < 1 || options.jacobian_max_age < 1)
@@ -42,19 +42,22 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
           "must be >= 1");
     n_ = rod_.node_size();
     nc_ = rod_.constraint_size();
+    m_ = rod_.unknown_size();
     max_age_ = options.jacobian_max_age;
     max_setup_calls_ = options.max_setup_calls;
     y_ = rod_.rest_state(g0);
     ym_ = y1_ = y_.head(n_);
-    z_ = z0_ = trial_ = F_ = Vector::Zero(n_ + nc_);
+    z_ = z0_ = trial_ = F_ = Vector::Zero(n_ + nc_ + m_);
     forces_ = Vector::Zero(nc_);
+    x_ = rod_.initial_unknowns(y_);
     k1_ = k2_ = Vector::Zero(n_);
     f_ = Vector::Zero(rod_.size());
     w_ = rod_.tolerance_scale().head(n_) * rod_.omega1();  // rate scale of each row
-    // Residual scaling: node rows as rates (1 / w), constraint rows (strains) by 1.
-    fs_ = Vector::Ones(n_ + nc_);
+    // Residual scaling: node rows as rates (1 / w), constraint and actuator rows (strains,
+    // lengths / L) by 1.
+    fs_ = Vector::Ones(n_ + nc_ + m_);
     fs_.head(n_) = w_.cwiseInverse();
-    const double omega_max = variational_max_frequency(problem.model(), options.nodes);
+    const double omega_max = variational_max_frequency(problem, options.nodes);
     const double floor = kRoundingFloor * std::numeric_limits<double>::epsilon() *
                          std::pow(omega_max / rod_.omega1(), 2);
     ko_.fnormtol = std::max(options.tol, floor);
@@ -62,25 +65,30 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     ko_.max_setup_calls = options.max_setup_calls;
     ko_.line_search = true;
     ko_.f_scale = fs_;
-    ko_.u_scale = Vector::Ones(n_ + nc_);
+    ko_.u_scale = Vector::Ones(n_ + nc_ + m_);
+    for (int e = 0; e < m_; ++e) ko_.u_scale[n_ + nc_ + e] = 1.0 / rod_.unknown_scale(e);
     cached_ = Vector::Zero(
-        (rod_.kirchhoff() ? rod_.constrained_pattern() : rod_.pattern(false)).nonZeros());
+        (constrained() ? rod_.constrained_pattern() : rod_.pattern(false)).nonZeros());
 
     // Unknowns u = [z; f]: the half-step increment of the node rows and, for Kirchhoff rods,
     // the step's mean constraint forces (3 per segment, N). Rows: the midpoint rule on the node
     // rows with f in the stresses, then the constraint at the end of the step, c(y0 + 2 z) = 0
     // (the midpoint analogue of SHAKE).
+    // Actuator unknowns x (muscle lengths at the midpoint, length-controlled forces) follow,
+    // with their rows: (Delta - L(y_m)) / L, and (L(y_1) - L_target(t + dt)) / L at the end of
+    // the step.
     residual_ = [this](const ConstRef& u, Eigen::Ref<Vector> F) {
       ym_ = y_.head(n_) + u.head(n_);
-      if (nc_ == 0) {
+      if (!constrained()) {
         rod_.rhs(h_, ym_, F);
         F = a_ * u - F;
         return;
       }
-      rod_.rhs(h_, ym_, u.tail(nc_), F.head(n_));
+      rod_.rhs(h_, ym_, u.segment(n_, nc_), u.tail(m_), F.head(n_));
       F.head(n_) = a_ * u.head(n_) - F.head(n_);
       y1_ = y_.head(n_) + 2.0 * u.head(n_);
-      rod_.constraint(y1_, F.tail(nc_));
+      if (nc_ > 0) rod_.constraint(y1_, F.segment(n_, nc_));
+      if (m_ > 0) rod_.actuator_rows(t_end_, y1_, u.tail(m_), F.tail(m_));
     };
     jacobian_ = [this](const ConstRef& z, const ConstRef&, KinsolSolver::SparseMatrix& J) {
       const bool reuse = jacobian_calls_ == 0 && cache_valid_;
@@ -93,11 +101,12 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
         return;
       }
       ym_ = y_.head(n_) + z.head(n_);
-      if (nc_ == 0) {
+      if (!constrained()) {
         rod_.newton_matrix(h_, ym_, a_, 1.0, J);
       } else {
         y1_ = y_.head(n_) + 2.0 * z.head(n_);
-        rod_.constrained_newton_matrix(h_, ym_, z.tail(nc_), a_, 1.0, y1_, 2.0, J);
+        rod_.constrained_newton_matrix(h_, ym_, z.segment(n_, nc_), z.tail(m_), a_, 1.0, y1_,
+                                       2.0, J);
       }
       std::copy(J.valuePtr(), J.valuePtr() + cached_.size(), cached_.data());
       cached_a_ = a_;
@@ -133,6 +142,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     if (!(dt > 0.0) || !std::isfinite(t + dt))
       return StepStatus::failed("implicit-midpoint-collocation: dt must be > 0");
     h_ = t + 0.5 * dt;
+    t_end_ = t + dt;
     a_ = 2.0 / dt;
     const bool continues =
         history_ > 0 && std::abs(t - t_) <= 1e-12 * std::max(1.0, std::abs(t));
@@ -142,12 +152,14 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     // midpoints) to this step's midpoint, the last mean rate, the explicit rate f(h, y0) and
     // no change. (Stiff modes, which the midpoint rule does not damp, flip sign every step at
     // large dt and spoil the extrapolation there.)
-    // The constraint forces are predicted by the last step's.
+    // The constraint forces and actuator unknowns are predicted by the last step's.
     z_.head(n_).setZero();
-    z_.tail(nc_) = forces_;
+    z_.segment(n_, nc_) = forces_;
+    z_.tail(m_) = x_;
     double best = residual_norm(z_);
     z0_ = z_;
-    trial_.tail(nc_) = forces_;
+    trial_.segment(n_, nc_) = forces_;
+    trial_.tail(m_) = x_;
     auto consider = [&](const auto& candidate) {
       trial_.head(n_) = candidate;
       const double r = residual_norm(trial_);
@@ -155,11 +167,11 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     };
     if (history_ >= 2) consider((0.5 * dt) * (k1_ + ((dt + dt1_) / (dt1_ + dt2_)) * (k1_ - k2_)));
     if (history_ >= 1) consider((0.5 * dt) * k1_);
-    rate(y_, forces_);
+    rate(y_, forces_, x_);
     consider((0.5 * dt) * f_.head(n_));
     z_ = z0_;
     ko_.u_scale.head(n_) = w_.cwiseInverse() * a_;
-    ko_.u_scale.tail(nc_).setConstant(1.0 / rod_.force_scale());
+    ko_.u_scale.segment(n_, nc_).setConstant(1.0 / rod_.force_scale());
 
     if (cache_valid_ && ++age_ > max_age_) cache_valid_ = false;
     ko_.max_setup_calls = max_setup_calls_;
@@ -173,7 +185,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
         z_ = z0_;
       } else {
         z_.head(n_) = (0.5 * dt) * f_.head(n_);
-        z_.tail(nc_) = forces_;
+        z_.segment(n_, nc_) = forces_;
+        z_.tail(m_) = x_;
       }
       cache_valid_ = false;
       ko_.max_setup_calls = 1;
@@ -197,8 +210,10 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
 
     // Ledger powers at the midpoint, then y1 = y0 + 2 z.
     ym_ = y_.head(n_) + z_.head(n_);
-    forces_ = z_.tail(nc_);
-    rate(ym_, forces_);
+    forces_ = z_.segment(n_, nc_);
+    x_ = z_.tail(m_);
+    rate(ym_, forces_, x_);
+    forces_used_ = rod_.last_forces();
     y_.head(n_) += 2.0 * z_.head(n_);
     y_[rod_.dissipated_index()] += dt * f_[rod_.dissipated_index()];
     y_[rod_.work_index()] += dt * f_[rod_.work_index()];
@@ -222,6 +237,16 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   double max_det_deviation() const override { return rod_.max_det_deviation(); }
   std::vector<result::CenterlineSample> centerline() const override { return rod_.centerline(); }
 
+  std::vector<ActuatorReading> actuator_readings() const override {
+    std::vector<ActuatorReading> out(m_);
+    if (m_ == 0) return out;
+    Vector lengths(m_);
+    rod_.path_lengths(y_, lengths);
+    const auto& which = rod_.problem().unknown_actuators();
+    for (int e = 0; e < m_; ++e) out[e] = {which[e], lengths[e], forces_used_[which[e]]};
+    return out;
+  }
+
   double max_quaternion_norm_deviation() const override {
     double worst = 0.0;
     for (int j = 0; j < n_; j += SemiDiscreteRod::kBlock)
@@ -238,13 +263,17 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     return F_.cwiseProduct(fs_).cwiseAbs().maxCoeff();
   }
 
-  /// f(h, y) (ledger rows included) into f_, with the constraint forces of a Kirchhoff rod.
-  void rate(const Vector& y, const Vector& forces) {
-    if (nc_ == 0)
+  /// f(h, y) (ledger rows included) into f_, with the constraint forces of a Kirchhoff rod and
+  /// the actuator unknowns.
+  void rate(const Vector& y, const Vector& forces, const Vector& x) {
+    if (!constrained())
       rod_.rhs(h_, y, f_);
     else
-      rod_.rhs(h_, y, forces, f_);
+      rod_.rhs(h_, y, forces, x, f_);
   }
+
+  /// Kirchhoff constraint forces or actuator unknowns: the extended system.
+  bool constrained() const { return rod_.kirchhoff() || rod_.unknown_size() > 0; }
 
   KinsolStats solve() {
     jacobian_calls_ = 0;
@@ -257,6 +286,10 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   KinsolSolver::Residual residual_;
   KinsolSolver::Jacobian jacobian_;
   int n_ = 0, nc_ = 0;  ///< node unknowns; constraint forces (Kirchhoff rods, else 0)
+  int m_ = 0;           ///< actuator unknowns (muscle lengths, length-controlled forces)
+  Vector x_;            ///< the last step's actuator unknowns (predictor)
+  DynamicProblem::Forces forces_used_{};  ///< the actuators' forces of the last step
+  double t_end_ = 0.0;  ///< the end of the step in progress (length targets)
   Vector y_;           ///< state at t_ (nodes, D, W)
   Vector y1_;          ///< end-of-step node rows (constraint rows)
   Vector forces_;      ///< the last step's mean constraint forces (predictor)

@@ -24,15 +24,48 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
   if (n_ < 3) throw std::invalid_argument(who + ": nodes must be >= 3");
   if (problem.is_kirchhoff() && !constrained)
     throw std::invalid_argument(who + ": rod.model kirchhoff is not supported yet");
+  if (problem.has_length_control() && !constrained)
+    throw std::invalid_argument(
+        who + ": cable displacement and fluidic volume control are not supported (a prescribed "
+              "path length makes the semi-discrete system an index-3 DAE); use "
+              "implicit-midpoint-collocation, variational, implicit-midpoint or bdf-alpha, or "
+              "give a tension / pressure");
   kirchhoff_ = problem.is_kirchhoff();
   const auto& model = problem.model();
   const double L = problem.length();
   ds_ = L / (n_ - 1);
   M_ = model.M_diag();
   V_ = model.V_diag();
-  dim_ = kBlock * (n_ - 1) + 2;
+  m_ = problem.unknown_count();
+  dim_ = kBlock * (n_ - 1) + 2 + m_;
   iD_ = kBlock * (n_ - 1);
   iW_ = iD_ + 1;
+  iX_ = iD_ + 2;
+
+  // Actuator unknowns: grid weights of their path lengths and rest lengths (at xi*).
+  muscles_ = problem.has_muscles();
+  length_control_ = problem.has_length_control();
+  unknown_act_ = problem.unknown_actuators();
+  is_muscle_.assign(m_, 0);
+  rest_.assign(m_, 0.0);
+  seg_weight_.assign(static_cast<std::size_t>(m_) * (n_ - 1), 0.0);
+  for (int e = 0; e < m_; ++e) {
+    const auto& act = problem.actuators()[unknown_act_[e]];
+    is_muscle_[e] = act.drive == ActuatorDrive::muscle;
+    for (int j = 0; j + 1 < n_; ++j) {
+      const double o = problem.span_overlap(unknown_act_[e], j * ds_, (j + 1) * ds_);
+      seg_weight_[e * (n_ - 1) + j] = o;
+      rest_[e] += o * act.path.length_rate((j + 0.5) * ds_, model.xi_star());
+    }
+  }
+  seg_len_.assign(seg_weight_.size(), 0.0);
+  seg_len0_ = seg_lenc_ = seg_lenc0_ = seg_len_;
+  rates_ = lengths_ = xtmp_ = Vector::Zero(m_);
+  if (muscles_) {
+    inertia_ = problem.node_inertia(n_);
+    inertia_inv_.resize(n_);
+    for (int j = 0; j < n_; ++j) inertia_inv_[j] = inertia_[j].inverse();
+  }
 
   g_.assign(n_, SE3::identity());
   eta_.assign(n_, Vector6::Zero());
@@ -67,6 +100,7 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
     b.segment<3>(kEta + 3).setConstant(L * omega1_);
   }
   scale_[iD_] = scale_[iW_] = e_bend;
+  for (int e = 0; e < m_; ++e) scale_[iX_ + e] = unknown_scale(e);
 
   f0_.resize(dim_);
   f1_.resize(dim_);
@@ -102,7 +136,55 @@ SemiDiscreteRod::Vector SemiDiscreteRod::rest_state(std::span<const SE3> g0) con
     const lie::Quaternion& q = g[j].rotation().quaternion();
     b.segment<4>(kQ) << q.w(), q.x(), q.y(), q.z();
   }
+  if (m_ > 0) y0.tail(m_) = initial_unknowns(y0);
   return y0;
+}
+
+SemiDiscreteRod::Vector SemiDiscreteRod::initial_unknowns(const ConstRef& y) const {
+  Vector x = Vector::Zero(m_);
+  if (m_ == 0) return x;
+  path_lengths(y, x);
+  for (int e = 0; e < m_; ++e)
+    if (!is_muscle_[e]) x[e] = 0.0;
+  return x;
+}
+
+void SemiDiscreteRod::segment_lengths(const double* y, std::vector<double>& seg) const {
+  unpack_nodes(y);
+  for (int j = 0; j + 1 < n_; ++j) {
+    const Vector6 xk = model_strain((g_[j].inverse() * g_[j + 1]).log() / ds_);
+    for (int e = 0; e < m_; ++e) {
+      const std::size_t i = static_cast<std::size_t>(e) * (n_ - 1) + j;
+      seg[i] = seg_weight_[i] == 0.0 ? 0.0
+                                     : seg_weight_[i] * P_.actuators()[unknown_act_[e]]
+                                                            .path.length_rate((j + 0.5) * ds_, xk);
+    }
+  }
+}
+
+void SemiDiscreteRod::path_lengths(const ConstRef& y, Eigen::Ref<Vector> lengths) const {
+  if (y.size() < iD_ || lengths.size() != m_)
+    throw std::invalid_argument("SemiDiscreteRod::path_lengths: bad sizes");
+  segment_lengths(y.data(), seg_lenc_);
+  for (int e = 0; e < m_; ++e) {
+    double sum = 0.0;
+    for (int j = 0; j + 1 < n_; ++j) sum += seg_lenc_[static_cast<std::size_t>(e) * (n_ - 1) + j];
+    lengths[e] = sum;
+  }
+}
+
+double SemiDiscreteRod::target_length(int e, double t) const {
+  return P_.actuators()[unknown_act_[e]].target_length(t, rest_[e]);
+}
+
+void SemiDiscreteRod::actuator_rows(double t_c, const ConstRef& y_c, const ConstRef& x,
+                                    Eigen::Ref<Vector> rows) const {
+  if (x.size() != m_ || rows.size() != m_)
+    throw std::invalid_argument("SemiDiscreteRod::actuator_rows: bad sizes");
+  if (length_control_) path_lengths(y_c, xtmp_);
+  const double L = P_.length();
+  for (int e = 0; e < m_; ++e)
+    rows[e] = is_muscle_[e] ? (x[e] - lengths_[e]) / L : (xtmp_[e] - target_length(e, t_c)) / L;
 }
 
 void SemiDiscreteRod::unpack_nodes(const double* y) const {
@@ -136,27 +218,44 @@ void SemiDiscreteRod::constraint(const ConstRef& y, Eigen::Ref<Vector> c) const 
 }
 
 void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& diss,
-                               double& work, const double* forces) const {
+                               double& work, const double* forces, const double* x) const {
   unpack_nodes(y);
+  const bool actuators = P_.has_actuators();
+  if (actuators) F_ = P_.forces(t, x, rest_.data());
+  if (m_ > 0) rates_.setZero();
   for (int j = 0; j + 1 < n_; ++j) {
     const SE3 G = g_[j].inverse() * g_[j + 1];
-    const Vector6 x = G.log();  // ds xi_j
-    xi_[j] = x / ds_;
+    const Vector6 x_seg = G.log();  // ds xi_j
+    xi_[j] = x_seg / ds_;
     const Vector6 rel = eta_[j + 1] - G.inverse().Ad_apply(eta_[j]);
-    xi_dot_[j] = se3::dexp_inv_apply(-x, rel) / ds_;
+    xi_dot_[j] = se3::dexp_inv_apply(-x_seg, rel) / ds_;
     const double s_mid = (j + 0.5) * ds_;
     // Kirchhoff rods: the rod's own force part is replaced by the constraint force (header).
-    Vector6 xk = xi_[j], xk_dot = xi_dot_[j];
-    if (kirchhoff_) {
-      xk.tail<3>() = nu_star_;
-      xk_dot.tail<3>().setZero();
-    }
-    Vector6 sigma = P_.internal_wrench(xk, xk_dot, s_mid, t);
+    Vector6 xk = model_strain(xi_[j]), xk_dot = xi_dot_[j];
+    if (kirchhoff_) xk_dot.tail<3>().setZero();
+    Vector6 sigma = actuators ? P_.internal_wrench(xk, xk_dot, s_mid, F_)
+                              : P_.internal_wrench(xk, xk_dot, s_mid, t);
     if (kirchhoff_ && forces) sigma.tail<3>() += Eigen::Map<const Vector3>(forces + 3 * j);
-    lambda_[j] = se3::dexp_inv_transpose_apply(x, sigma);
+    lambda_[j] = se3::dexp_inv_transpose_apply(x_seg, sigma);
     moved_[j] = G.coAd_apply(lambda_[j]);
     seg_diss_[j] = ds_ * xk_dot.dot(V_.cwiseProduct(xk_dot));
-    seg_work_[j] = P_.has_actuators() ? ds_ * P_.actuator_power(xk, xk_dot, s_mid, t) : 0.0;
+    if (muscles_) seg_diss_[j] += ds_ * P_.embedded_dissipation(xk_dot, s_mid);
+    seg_work_[j] = actuators ? ds_ * P_.actuator_power(xk, xk_dot, s_mid, F_) : 0.0;
+    for (int e = 0; e < m_; ++e) {
+      const std::size_t i = static_cast<std::size_t>(e) * (n_ - 1) + j;
+      if (seg_weight_[i] == 0.0) {
+        seg_len_[i] = 0.0;
+        continue;
+      }
+      const auto& path = P_.actuators()[unknown_act_[e]].path;
+      seg_len_[i] = seg_weight_[i] * path.length_rate(s_mid, xk);
+      rates_[e] += seg_weight_[i] * path.unit_wrench(s_mid, xk).dot(xk_dot);  // d|u|/dt
+    }
+  }
+  for (int e = 0; e < m_; ++e) {
+    double sum = 0.0;
+    for (int j = 0; j + 1 < n_; ++j) sum += seg_len_[static_cast<std::size_t>(e) * (n_ - 1) + j];
+    lengths_[e] = sum;
   }
   diss = 0.0;
   work = 0.0;
@@ -171,9 +270,7 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
     const Vector6 drag = P_.drag_load(eta);
     Vector6 entry = Vector6::Zero();
     for (const auto& e : entries_)
-      if (e.node == j) entry += P_.entry_load(e.s, xi_[tip ? j - 1 : j], t);
-    const Vector6 rhs = se3::coad_apply(eta, M_.cwiseProduct(eta)) +
-                        (inner - moved_[j - 1] + entry) / w + P_.gravity_load(R) + applied + drag;
+      if (e.node == j) entry += P_.entry_load(e.s, xi_[tip ? j - 1 : j], F_);
     node_diss_[j] = -w * drag.dot(eta);
     node_work_[j] = w * applied.dot(eta) + entry.dot(eta) + (tip ? inner.dot(eta) : 0.0);
     diss += node_diss_[j];
@@ -188,74 +285,182 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
     const Vector3 psi = eta.head<3>();
     out[kQ] = -0.5 * qv.dot(psi);
     Eigen::Map<Vector3>(out + kQ + 1) = 0.5 * (qw * psi + qv.cross(psi));
-    Eigen::Map<Vector6>(out + kEta) = rhs.cwiseQuotient(M_);
+    if (muscles_) {
+      // M_j eta_dot = ad_eta^T M_j eta + ... with the full node inertia (3.16)-(3.20), and the
+      // muscles' weight at their offsets.
+      const double s = j * ds_;
+      const Vector6 weight =
+          P_.embedded_weight(R, s - 0.5 * ds_, std::min(P_.length(), s + 0.5 * ds_), s);
+      const Vector6 rhs = se3::coad_apply(eta, inertia_[j] * eta) +
+                          (inner - moved_[j - 1] + entry) / w + P_.gravity_load(R) + weight +
+                          applied + drag;
+      Eigen::Map<Vector6>(out + kEta) = inertia_inv_[j] * rhs;
+    } else {
+      const Vector6 rhs = se3::coad_apply(eta, M_.cwiseProduct(eta)) +
+                          (inner - moved_[j - 1] + entry) / w + P_.gravity_load(R) + applied + drag;
+      Eigen::Map<Vector6>(out + kEta) = rhs.cwiseQuotient(M_);
+    }
   }
 }
 
 void SemiDiscreteRod::rhs(double t, const ConstRef& y, Eigen::Ref<Vector> f) const {
-  if (y.size() < iD_ || (f.size() != dim_ && f.size() != iD_))
-    throw std::invalid_argument("SemiDiscreteRod::rhs: bad sizes");
-  double diss = 0.0, work = 0.0;
-  evaluate(t, y.data(), f.data(), diss, work);
-  if (f.size() == dim_) {
-    f[iD_] = diss;
-    f[iW_] = work;
-  }
+  if (m_ > 0 && y.size() != dim_)
+    throw std::invalid_argument("SemiDiscreteRod::rhs: y must carry the actuator unknowns");
+  rhs(t, y, Vector(), m_ > 0 ? ConstRef(y.tail(m_)) : ConstRef(Vector()), f);
 }
 
 void SemiDiscreteRod::rhs(double t, const ConstRef& y, const ConstRef& forces,
                           Eigen::Ref<Vector> f) const {
+  if (m_ > 0 && y.size() != dim_)
+    throw std::invalid_argument("SemiDiscreteRod::rhs: y must carry the actuator unknowns");
+  rhs(t, y, forces, m_ > 0 ? ConstRef(y.tail(m_)) : ConstRef(Vector()), f);
+}
+
+void SemiDiscreteRod::rhs(double t, const ConstRef& y, const ConstRef& forces, const ConstRef& x,
+                          Eigen::Ref<Vector> f) const {
   if (y.size() < iD_ || (f.size() != dim_ && f.size() != iD_) ||
-      forces.size() != constraint_size())
+      (forces.size() != 0 && forces.size() != constraint_size()) || x.size() != m_)
     throw std::invalid_argument("SemiDiscreteRod::rhs: bad sizes");
   double diss = 0.0, work = 0.0;
-  evaluate(t, y.data(), f.data(), diss, work, forces.size() ? forces.data() : nullptr);
+  evaluate(t, y.data(), f.data(), diss, work, forces.size() ? forces.data() : nullptr,
+           m_ ? x.data() : nullptr);
   if (f.size() == dim_) {
     f[iD_] = diss;
     f[iW_] = work;
+    if (m_ > 0) f.tail(m_) = rates_;
   }
 }
 
-SemiDiscreteRod::SparseMatrix SemiDiscreteRod::constrained_pattern() const {
-  if (!kirchhoff_) throw std::invalid_argument("SemiDiscreteRod::constrained_pattern: not Kirchhoff");
+SemiDiscreteRod::Layout SemiDiscreteRod::layout(bool ledger, bool forces) const {
+  Layout lay;
+  lay.ledger = ledger;
+  lay.forces = forces;
+  lay.iF = iD_ + (ledger ? 2 : 0);
+  lay.iX = lay.iF + (forces ? constraint_size() : 0);
+  lay.n = lay.iX + m_;
+  return lay;
+}
+
+SemiDiscreteRod::SparseMatrix SemiDiscreteRod::build_pattern(const Layout& lay) const {
   std::vector<Eigen::Triplet<double>> t;
   for (int k = 1; k < n_; ++k) {
     const int first = std::max(1, k - 1), last = std::min(n_ - 1, k + 1);
     for (int c = 0; c < kBlock; ++c) {
       const int col = kBlock * (k - 1) + c;
       for (int row = kBlock * (first - 1); row < kBlock * last; ++row) t.emplace_back(row, col, 1.0);
+      if (lay.ledger) {
+        t.emplace_back(iD_, col, 1.0);
+        t.emplace_back(iW_, col, 1.0);
+      }
       if (c >= kEta) continue;
-      // c_(k-1) and c_k see the pose of node k
-      for (int seg = k - 1; seg <= std::min(k, n_ - 2); ++seg)
-        for (int r = 0; r < 3; ++r) t.emplace_back(iD_ + 3 * seg + r, col, 1.0);
+      // c_(k-1) and c_k see the pose of node k; path lengths see every pose
+      if (lay.forces)
+        for (int seg = k - 1; seg <= std::min(k, n_ - 2); ++seg)
+          for (int r = 0; r < 3; ++r) t.emplace_back(lay.iF + 3 * seg + r, col, 1.0);
+      for (int e = 0; e < m_; ++e) t.emplace_back(lay.iX + e, col, 1.0);
     }
   }
-  for (int seg = 0; seg + 1 < n_; ++seg)
-    for (int r = 0; r < 3; ++r)
-      for (int node = std::max(1, seg); node <= seg + 1; ++node)
-        for (int e = 0; e < 6; ++e) t.emplace_back(kBlock * (node - 1) + kEta + e, iD_ + 3 * seg + r, 1.0);
-  const int n = iD_ + constraint_size();
-  SparseMatrix J(n, n);
+  if (lay.ledger) {
+    t.emplace_back(iD_, iD_, 1.0);
+    t.emplace_back(iW_, iW_, 1.0);
+  }
+  if (lay.forces)
+    for (int seg = 0; seg + 1 < n_; ++seg)
+      for (int r = 0; r < 3; ++r)
+        for (int node = std::max(1, seg); node <= seg + 1; ++node)
+          for (int e = 0; e < 6; ++e)
+            t.emplace_back(kBlock * (node - 1) + kEta + e, lay.iF + 3 * seg + r, 1.0);
+  // Actuator unknowns: their forces reach every eta row (and the ledger); their rows see
+  // their own unknown.
+  for (int e = 0; e < m_; ++e) {
+    for (int node = 1; node < n_; ++node)
+      for (int i = 0; i < 6; ++i) t.emplace_back(kBlock * (node - 1) + kEta + i, lay.iX + e, 1.0);
+    if (lay.ledger) {
+      t.emplace_back(iD_, lay.iX + e, 1.0);
+      t.emplace_back(iW_, lay.iX + e, 1.0);
+    }
+    t.emplace_back(lay.iX + e, lay.iX + e, 1.0);
+  }
+  SparseMatrix J(lay.n, lay.n);
   J.setFromTriplets(t.begin(), t.end());
   J.makeCompressed();
   return J;
+}
+
+SemiDiscreteRod::SparseMatrix SemiDiscreteRod::pattern(bool with_ledger) const {
+  if (!with_ledger && kirchhoff_)
+    throw std::invalid_argument("SemiDiscreteRod::pattern: Kirchhoff rods use constrained_pattern");
+  return build_pattern(layout(with_ledger, false));
+}
+
+SemiDiscreteRod::SparseMatrix SemiDiscreteRod::constrained_pattern() const {
+  if (!kirchhoff_ && m_ == 0)
+    throw std::invalid_argument("SemiDiscreteRod::constrained_pattern: nothing to constrain");
+  return build_pattern(layout(false, kirchhoff_));
+}
+
+void SemiDiscreteRod::newton_matrix(double t, const ConstRef& y, double a, double b,
+                                    SparseMatrix& J) const {
+  const bool ledger = J.rows() == dim_;
+  const Layout lay = layout(ledger, false);
+  if ((!ledger && J.rows() != lay.n) || J.cols() != J.rows() || y.size() < iD_ ||
+      (m_ > 0 && y.size() != dim_))
+    throw std::invalid_argument("SemiDiscreteRod::newton_matrix: bad sizes");
+  fill_newton_matrix(lay, t, y, nullptr, m_ ? y.data() + iX_ : nullptr, a, b, y, 0.0, J);
 }
 
 void SemiDiscreteRod::constrained_newton_matrix(double t, const ConstRef& y,
                                                 const ConstRef& forces, double a, double b,
                                                 const ConstRef& y_c, double cy,
                                                 SparseMatrix& J) const {
-  const int nc = constraint_size();
-  if (!kirchhoff_ || J.rows() != iD_ + nc || J.cols() != J.rows() || y.size() < iD_ ||
-      y_c.size() < iD_ || forces.size() != nc)
+  if (m_ > 0)
+    throw std::invalid_argument(
+        "SemiDiscreteRod::constrained_newton_matrix: give the actuator unknowns");
+  constrained_newton_matrix(t, y, forces, Vector(), a, b, y_c, cy, J);
+}
+
+void SemiDiscreteRod::constrained_newton_matrix(double t, const ConstRef& y,
+                                                const ConstRef& forces, const ConstRef& x,
+                                                double a, double b, const ConstRef& y_c,
+                                                double cy, SparseMatrix& J) const {
+  const Layout lay = layout(false, kirchhoff_);
+  if ((!kirchhoff_ && m_ == 0) || J.rows() != lay.n || J.cols() != J.rows() || y.size() < iD_ ||
+      y_c.size() < iD_ || forces.size() != constraint_size() || x.size() != m_)
     throw std::invalid_argument("SemiDiscreteRod::constrained_newton_matrix: bad sizes");
+  fill_newton_matrix(lay, t, y, kirchhoff_ ? forces.data() : nullptr, m_ ? x.data() : nullptr, a,
+                     b, y_c, cy, J);
+}
+
+void SemiDiscreteRod::fill_newton_matrix(const Layout& lay, double t, const ConstRef& y,
+                                         const double* forces, const double* x, double a,
+                                         double b, const ConstRef& y_c, double cy,
+                                         SparseMatrix& J) const {
+  const std::size_t nseg = static_cast<std::size_t>(n_ - 1);
+  const double L = P_.length();
   double diss = 0.0, work = 0.0;
-  evaluate(t, y.data(), f0_.data(), diss, work, forces.data());
-  constraint(y_c.data(), c0_.data());
+  evaluate(t, y.data(), f0_.data(), diss, work, forces, x);
+  const double diss0 = diss, work0 = work;
+  seg0_diss_ = seg_diss_;
+  seg0_work_ = seg_work_;
+  node0_diss_ = node_diss_;
+  node0_work_ = node_work_;
+  seg_len0_ = seg_len_;
+  if (lay.forces) constraint(y_c.data(), c0_.data());
+  if (length_control_) segment_lengths(y_c.data(), seg_lenc0_);
+  const bool perturb_c = lay.forces || length_control_;
   const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
   ytmp_.head(iD_) = y.head(iD_);
-  yctmp_ = y_c.head(iD_);
-  // Node columns: three node colours; node k moves the node rows k-1..k+1 and c_(k-1), c_k.
+  if (perturb_c) yctmp_ = y_c.head(iD_);
+  // Change of unknown e's path length when node k moves: its two segments' terms.
+  auto length_change = [&](const std::vector<double>& seg1, const std::vector<double>& seg0,
+                           int e, int k) {
+    const std::size_t i = static_cast<std::size_t>(e) * nseg;
+    double d = seg1[i + k - 1] - seg0[i + k - 1];
+    if (k + 1 < n_) d += seg1[i + k] - seg0[i + k];
+    return d;
+  };
+  // Node columns: three node colours; node k moves the node rows k-1..k+1, the ledger powers of
+  // segments k - 1, k and node k, c_(k-1), c_k, and the path-length terms of segments k - 1, k.
   for (int colour = 0; colour < kColours; ++colour) {
     const int first = colour == 0 ? kColours : colour;
     if (first > n_ - 1) continue;
@@ -264,112 +469,88 @@ void SemiDiscreteRod::constrained_newton_matrix(double t, const ConstRef& y,
         const int i = kBlock * (k - 1) + c;
         const double h = root_eps * std::max(std::abs(y[i]), scale_[i]);
         ytmp_[i] = y[i] + h;
-        yctmp_[i] = y_c[i] + h;
+        if (perturb_c) yctmp_[i] = y_c[i] + h;
       }
-      evaluate(t, ytmp_.data(), f1_.data(), diss, work, forces.data());
-      if (c < kEta) constraint(yctmp_.data(), c1_.data());
-      for (int k = first; k < n_; k += kColours) {
-        const int col = kBlock * (k - 1) + c;
-        const double h = ytmp_[col] - y[col], hc = yctmp_[col] - y_c[col];
-        ytmp_[col] = y[col];
-        yctmp_[col] = y_c[col];
-        for (SparseMatrix::InnerIterator it(J, col); it; ++it) {
-          const auto row = it.row();
-          if (row < iD_)
-            it.valueRef() = (row == col ? a : 0.0) - b * ((f1_[row] - f0_[row]) / h);
-          else
-            it.valueRef() = cy * ((c1_[row - iD_] - c0_[row - iD_]) / hc);
-        }
-      }
-    }
-  }
-  // Force columns: two segment colours; f_k moves the eta rows of nodes k and k + 1.
-  ftmp_ = forces;
-  for (int colour = 0; colour < 2; ++colour) {
-    for (int r = 0; r < 3; ++r) {
-      for (int k = colour; k + 1 < n_; k += 2) {
-        const int i = 3 * k + r;
-        ftmp_[i] = forces[i] + root_eps * std::max(std::abs(forces[i]), force_scale_);
-      }
-      evaluate(t, y.data(), f1_.data(), diss, work, ftmp_.data());
-      for (int k = colour; k + 1 < n_; k += 2) {
-        const int i = 3 * k + r;
-        const double h = ftmp_[i] - forces[i];
-        ftmp_[i] = forces[i];
-        for (SparseMatrix::InnerIterator it(J, iD_ + i); it; ++it)
-          it.valueRef() = -b * ((f1_[it.row()] - f0_[it.row()]) / h);
-      }
-    }
-  }
-}
-
-SemiDiscreteRod::SparseMatrix SemiDiscreteRod::pattern(bool with_ledger) const {
-  std::vector<Eigen::Triplet<double>> t;
-  for (int k = 1; k < n_; ++k) {
-    const int first = std::max(1, k - 1), last = std::min(n_ - 1, k + 1);
-    for (int c = 0; c < kBlock; ++c) {
-      const int col = kBlock * (k - 1) + c;
-      for (int row = kBlock * (first - 1); row < kBlock * last; ++row) t.emplace_back(row, col, 1.0);
-      if (with_ledger) {
-        t.emplace_back(iD_, col, 1.0);
-        t.emplace_back(iW_, col, 1.0);
-      }
-    }
-  }
-  if (with_ledger) {
-    t.emplace_back(iD_, iD_, 1.0);
-    t.emplace_back(iW_, iW_, 1.0);
-  }
-  const int n = with_ledger ? dim_ : iD_;
-  SparseMatrix J(n, n);
-  J.setFromTriplets(t.begin(), t.end());
-  J.makeCompressed();
-  return J;
-}
-
-void SemiDiscreteRod::newton_matrix(double t, const ConstRef& y, double a, double b,
-                                    SparseMatrix& J) const {
-  const bool ledger = J.rows() == dim_;
-  if ((!ledger && J.rows() != iD_) || J.cols() != J.rows() || y.size() < iD_)
-    throw std::invalid_argument("SemiDiscreteRod::newton_matrix: bad sizes");
-  double diss = 0.0, work = 0.0;
-  evaluate(t, y.data(), f0_.data(), diss, work);
-  seg0_diss_ = seg_diss_;
-  seg0_work_ = seg_work_;
-  node0_diss_ = node_diss_;
-  node0_work_ = node_work_;
-  const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
-  ytmp_.head(iD_) = y.head(iD_);
-  for (int colour = 0; colour < kColours; ++colour) {
-    const int first = colour == 0 ? kColours : colour;
-    if (first > n_ - 1) continue;
-    for (int c = 0; c < kBlock; ++c) {
-      for (int k = first; k < n_; k += kColours) {
-        const int i = kBlock * (k - 1) + c;
-        ytmp_[i] = y[i] + root_eps * std::max(std::abs(y[i]), scale_[i]);
-      }
-      evaluate(t, ytmp_.data(), f1_.data(), diss, work);
+      evaluate(t, ytmp_.data(), f1_.data(), diss, work, forces, x);
+      if (c < kEta && lay.forces) constraint(yctmp_.data(), c1_.data());
+      if (c < kEta && length_control_) segment_lengths(yctmp_.data(), seg_lenc_);
       for (int k = first; k < n_; k += kColours) {
         const int col = kBlock * (k - 1) + c;
         const double h = ytmp_[col] - y[col];
+        const double hc = perturb_c ? yctmp_[col] - y_c[col] : h;
         ytmp_[col] = y[col];
-        double d_diss = seg_diss_[k - 1] - seg0_diss_[k - 1] + node_diss_[k] - node0_diss_[k];
-        double d_work = seg_work_[k - 1] - seg0_work_[k - 1] + node_work_[k] - node0_work_[k];
-        if (k + 1 < n_) {
-          d_diss += seg_diss_[k] - seg0_diss_[k];
-          d_work += seg_work_[k] - seg0_work_[k];
+        if (perturb_c) yctmp_[col] = y_c[col];
+        double d_diss = 0.0, d_work = 0.0;
+        if (lay.ledger) {
+          d_diss = seg_diss_[k - 1] - seg0_diss_[k - 1] + node_diss_[k] - node0_diss_[k];
+          d_work = seg_work_[k - 1] - seg0_work_[k - 1] + node_work_[k] - node0_work_[k];
+          if (k + 1 < n_) {
+            d_diss += seg_diss_[k] - seg0_diss_[k];
+            d_work += seg_work_[k] - seg0_work_[k];
+          }
         }
         for (SparseMatrix::InnerIterator it(J, col); it; ++it) {
-          const auto row = it.row();
-          const double df = row == iD_ ? d_diss : row == iW_ ? d_work : f1_[row] - f0_[row];
-          it.valueRef() = (row == col ? a : 0.0) - b * (df / h);
+          const auto row = static_cast<int>(it.row());
+          if (row < iD_) {
+            it.valueRef() = (row == col ? a : 0.0) - b * ((f1_[row] - f0_[row]) / h);
+          } else if (lay.ledger && row < lay.iF) {
+            const double df = row == iD_ ? d_diss : d_work;
+            it.valueRef() = (row == col ? a : 0.0) - b * (df / h);
+          } else if (row < lay.iX) {
+            it.valueRef() = cy * ((c1_[row - lay.iF] - c0_[row - lay.iF]) / hc);
+          } else {
+            const int e = row - lay.iX;
+            it.valueRef() = is_muscle_[e]
+                                ? -length_change(seg_len_, seg_len0_, e, k) / h / L
+                                : cy * length_change(seg_lenc_, seg_lenc0_, e, k) / hc / L;
+          }
         }
       }
     }
   }
-  if (ledger) {
+  if (lay.ledger) {
     J.coeffRef(iD_, iD_) = a;
     J.coeffRef(iW_, iW_) = a;
+  }
+  // Force columns (Kirchhoff): two segment colours; f_k moves the eta rows of nodes k and k + 1.
+  if (lay.forces) {
+    ftmp_ = Eigen::Map<const Vector>(forces, constraint_size());
+    for (int colour = 0; colour < 2; ++colour) {
+      for (int r = 0; r < 3; ++r) {
+        for (int k = colour; k + 1 < n_; k += 2) {
+          const int i = 3 * k + r;
+          ftmp_[i] = forces[i] + root_eps * std::max(std::abs(forces[i]), force_scale_);
+        }
+        evaluate(t, y.data(), f1_.data(), diss, work, ftmp_.data(), x);
+        for (int k = colour; k + 1 < n_; k += 2) {
+          const int i = 3 * k + r;
+          const double h = ftmp_[i] - forces[i];
+          ftmp_[i] = forces[i];
+          for (SparseMatrix::InnerIterator it(J, lay.iF + i); it; ++it)
+            it.valueRef() = -b * ((f1_[it.row()] - f0_[it.row()]) / h);
+        }
+      }
+    }
+  }
+  // Actuator unknown columns: one evaluation each.
+  if (m_ > 0) {
+    xtmp_ = Eigen::Map<const Vector>(x, m_);
+    for (int e = 0; e < m_; ++e) {
+      const double h = root_eps * std::max(std::abs(x[e]), unknown_scale(e));
+      xtmp_[e] = x[e] + h;
+      evaluate(t, y.data(), f1_.data(), diss, work, forces, xtmp_.data());
+      xtmp_[e] = x[e];
+      const double dh = (x[e] + h) - x[e];
+      for (SparseMatrix::InnerIterator it(J, lay.iX + e); it; ++it) {
+        const auto row = static_cast<int>(it.row());
+        if (row < iD_)
+          it.valueRef() = -b * ((f1_[row] - f0_[row]) / dh);
+        else if (lay.ledger && row < lay.iF)
+          it.valueRef() = -b * ((row == iD_ ? diss - diss0 : work - work0) / dh);
+        else  // its own row: a muscle's (x_e - L_e) / L, a length constraint's 0
+          it.valueRef() = is_muscle_[e] ? 1.0 / L : 0.0;
+      }
+    }
   }
 }
 
@@ -378,6 +559,11 @@ Energy SemiDiscreteRod::energy(double dissipated, double work_in) const {
   e.kinetic = kinetic_energy(P_.model(), eta_, ds_);
   e.strain = strain_energy_segments(P_.model(), xi_, ds_);
   e.gravity = gravity_energy(P_, g_, ds_);
+  if (muscles_) {
+    e.kinetic = kinetic_energy(inertia_, eta_, ds_);
+    e.strain += embedded_strain_energy_segments(P_, xi_, ds_);
+    e.gravity += embedded_gravity_energy(P_, g_, ds_);
+  }
   e.dissipated = dissipated;
   e.work_in = work_in;
   return e;

@@ -19,6 +19,23 @@ constexpr double kFdStep = 1e-7;
 /// A Newton step that does not reduce the residual by this factor triggers a fresh Jacobian.
 constexpr double kSlowRatio = 0.5;
 
+/// Shooting unknowns with actuator unknowns: Lambda(0) and one per muscle or length-controlled
+/// actuator (fixed capacity: no allocation in a step).
+constexpr int kMaxShootingUnknowns = 6 + DynamicProblem::kMaxActuators;
+using VectorU = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxShootingUnknowns, 1>;
+using MatrixU = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxShootingUnknowns,
+                              kMaxShootingUnknowns>;
+
+/// Newton's state across steps for one kind of unknown vector: Broyden's Jacobian, the step
+/// constant it was computed for, the last two solutions (linear predictor).
+template <class Vec, class Mat>
+struct NewtonState {
+  Mat J;
+  bool valid = false;
+  double c = 0.0;
+  Vec prev, prev2;
+};
+
 class ShootingStepper final : public Stepper {
  public:
   ShootingStepper(const DynamicProblem& problem, const ShootingOptions& options,
@@ -43,62 +60,54 @@ class ShootingStepper final : public Stepper {
     const double EI = std::min(K[0], K[1]), L = problem.length();
     scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
     // first guess: the base wrench of the initial state
-    x_prev_ = P_.model().K_diag().cwiseProduct(xi_[0] - P_.model().xi_star()).cwiseQuotient(scale_);
-    x_prev2_ = x_prev_;
+    const Vector6 x0 =
+        P_.model().K_diag().cwiseProduct(xi_[0] - P_.model().xi_star()).cwiseQuotient(scale_);
     entries_ = problem.entry_nodes(n_);
+    m_ = problem.unknown_count();
+    if (m_ == 0) {
+      plain_.J.setIdentity();
+      plain_.prev = plain_.prev2 = x0;
+    } else {
+      setup_unknowns(x0);
+    }
+    muscles_ = problem.has_muscles();
+    if (muscles_) {
+      inertia_ = problem.node_inertia(n_);
+      K_emb_.resize(n_);
+      V_emb_.resize(n_);
+      Kt_full_.resize(n_);
+      for (int j = 0; j < n_; ++j) {
+        K_emb_[j] = problem.embedded_stiffness(j * ds_);
+        V_emb_[j] = problem.embedded_viscosity(j * ds_);
+      }
+    }
   }
 
   StepStatus step(double t, double dt) override {
     t_u_ = t + rule_->theta() * dt;
+    t_end_ = t + dt;
     dt_ = dt;
     c_ = rule_->coefficient(dt);
+    end_ = rule_->end_coefficient();
     rule_->history(RuleField::strain, dt, xi_, xi_hist_);
     rule_->history(RuleField::velocity, dt, eta_, eta_hist_);
     const Vector6& V = P_.model().V_diag();
     Kt_ = P_.model().K_diag() + c_ * V;
     // Lambda = K (xi - xi*) + V (c xi + h) + tendons = Kt (xi - xi_ref) + tendons   (3.10)
     const Vector6 K_xi_star = P_.model().K_diag().cwiseProduct(P_.model().xi_star());
-    for (int j = 0; j < n_; ++j)
-      xi_ref_[j] = (K_xi_star - V.cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
-    Vector6 x = steps_ >= 2 ? Vector6(2.0 * x_prev_ - x_prev2_) : x_prev_;
-    int shots = 0;
-    Vector6 r = shoot(x);
-    ++shots;
-    if (!J_valid_ || c_ != J_c_) {
-      if (!finite_difference_jacobian(x, r, shots)) return failure("the Jacobian is not finite", t);
-    }
-    bool fresh = false;
-    while (!(r.lpNorm<Eigen::Infinity>() <= opt_.tol)) {
-      if (shots >= opt_.max_iterations || !r.allFinite())
-        return failure("single shooting did not converge (tip residual " +
-                       std::to_string(r.lpNorm<Eigen::Infinity>()) + ")", t);
-      const Eigen::PartialPivLU<Matrix6> lu(J_);
-      const Vector6 dx = -lu.solve(r);
-      if (!dx.allFinite()) return failure("the shooting Jacobian is singular", t);
-      const Vector6 r_new = shoot(x + dx);
-      ++shots;
-      if (!(r_new.lpNorm<Eigen::Infinity>() <= kSlowRatio * r.lpNorm<Eigen::Infinity>()) && !fresh) {
-        // Broyden's secant model went stale: rebuild the Jacobian where we stand.
-        if (!finite_difference_jacobian(x, r, shots)) return failure("the Jacobian is not finite", t);
-        fresh = true;
-        continue;
-      }
-      // Broyden's rank-one update of the secant model.
-      J_ += ((r_new - r) - J_ * dx) * dx.transpose() / dx.squaredNorm();
-      x += dx;
-      r = r_new;
-      fresh = false;
-    }
-    // the last shot was at x: the profiles at t_u are current.
+    if (muscles_)
+      muscle_references();
+    else
+      for (int j = 0; j < n_; ++j)
+        xi_ref_[j] = (K_xi_star - V.cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
+    const StepStatus status = m_ == 0 ? solve(plain_, t) : solve(extended_, t);
+    if (!status.ok) return status;
+    // the last shot was at the solution: the profiles at t_u are current.
     accumulate_ledger(dt);
     rule_->advance(RuleField::strain, dt, xi_u_, xi_hist_, xi_);
     rule_->advance(RuleField::velocity, dt, eta_u_, eta_hist_, eta_);
     update_poses();
-    x_prev2_ = x_prev_;
-    x_prev_ = x;
     ++steps_;
-    StepStatus status;
-    status.iterations = shots;
     return status;
   }
 
@@ -107,6 +116,11 @@ class ShootingStepper final : public Stepper {
     e.kinetic = kinetic_energy(P_.model(), eta_, ds_);
     e.strain = strain_energy_nodes(P_.model(), xi_, ds_);
     e.gravity = gravity_energy(P_, g_, ds_);
+    if (muscles_) {
+      e.kinetic = kinetic_energy(inertia_, eta_, ds_);
+      e.strain += embedded_strain_energy_nodes(P_, xi_, ds_);
+      e.gravity += embedded_gravity_energy(P_, g_, ds_);
+    }
     return e;
   }
 
@@ -120,55 +134,203 @@ class ShootingStepper final : public Stepper {
     return out;
   }
 
+  std::vector<ActuatorReading> actuator_readings() const override {
+    std::vector<ActuatorReading> out(m_);
+    const auto& which = P_.unknown_actuators();
+    for (int e = 0; e < m_; ++e) out[e] = {which[e], path_length(e, xi_), F_[which[e]]};
+    return out;
+  }
+
  private:
   StepStatus failure(const std::string& what, double t) const {
     return StepStatus::failed(std::string(rule_->name()) + ": " + what + " in the step from t = " +
                               std::to_string(t) + " s (dt = " + std::to_string(dt_) + " s)");
   }
 
+  /// Newton on the shooting unknowns x (Lambda(0) scaled, then the actuator unknowns): a
+  /// finite-difference Jacobian, Broyden updates, reused across steps, a linear predictor.
+  template <class Vec, class Mat>
+  StepStatus solve(NewtonState<Vec, Mat>& S, double t) {
+    Vec x = steps_ >= 2 ? Vec(2.0 * S.prev - S.prev2) : S.prev;
+    int shots = 0;
+    Vec r = shoot(x);
+    ++shots;
+    if (!S.valid || c_ != S.c) {
+      if (!finite_difference_jacobian(S, x, r, shots))
+        return failure("the Jacobian is not finite", t);
+    }
+    bool fresh = false;
+    auto norm = [](const Vec& v) { return v.template lpNorm<Eigen::Infinity>(); };
+    while (!(norm(r) <= opt_.tol)) {
+      if (shots >= opt_.max_iterations || !r.allFinite())
+        return failure("single shooting did not converge (tip residual " +
+                       std::to_string(norm(r)) + ")", t);
+      const Eigen::PartialPivLU<Mat> lu(S.J);
+      const Vec dx = -lu.solve(r);
+      if (!dx.allFinite()) return failure("the shooting Jacobian is singular", t);
+      const Vec r_new = shoot<Vec>(x + dx);
+      ++shots;
+      if (!(norm(r_new) <= kSlowRatio * norm(r)) && !fresh) {
+        // Broyden's secant model went stale: rebuild the Jacobian where we stand.
+        if (!finite_difference_jacobian(S, x, r, shots))
+          return failure("the Jacobian is not finite", t);
+        fresh = true;
+        continue;
+      }
+      // Broyden's rank-one update of the secant model.
+      S.J += ((r_new - r) - S.J * dx) * dx.transpose() / dx.squaredNorm();
+      x += dx;
+      r = r_new;
+      fresh = false;
+    }
+    S.prev2 = S.prev;
+    S.prev = x;
+    StepStatus status;
+    status.iterations = shots;
+    return status;
+  }
+
   /// Integrates the BVP at t_u from the base with Lambda(0) = x * scale (explicit Euler RKMK,
-  /// (3.51)-(3.52)) and returns the scaled tip residual.
-  Vector6 shoot(const Vector6& x) {
+  /// (3.51)-(3.52)) and returns the scaled tip residual; with actuator unknowns, also their rows:
+  /// a muscle's x_e - L_e(xi_u) / L (its length at t_u, x_e = Delta / L), a length-controlled
+  /// actuator's (L_e(x_end) - L_target(t + dt)) / L with the end-of-step strains
+  /// x_end = a xi_u + (1 - a) xi (x_e = F / (E I / L^2)). L_e: the trapezoid over the nodes.
+  template <class Vec>
+  Vec shoot(const Vec& x) {
     const Vector6& M = P_.model().M_diag();
-    Vector6 Lambda = x.cwiseProduct(scale_);
+    Vector6 Lambda = x.template head<6>().cwiseProduct(scale_);
     Vector6 eta = Vector6::Zero();
     SE3 g = P_.base();
+    const bool unknowns = m_ > 0;
+    if (unknowns) {
+      for (int e = 0; e < m_; ++e)
+        unknown_[e] = x[6 + e] * (is_muscle_[e] ? P_.length() : scale_[3]);
+      F_ = P_.forces(t_u_, unknown_.data(), rest_.data());
+    }
     for (int j = 0;; ++j) {
       const double s = j * ds_;
-      const Vector6 xi = P_.solve_strain(Kt_, xi_ref_[j], Lambda, s, t_u_);
+      Vector6 xi;
+      if (muscles_)
+        xi = P_.solve_strain(Kt_full_[j], xi_ref_[j], Lambda, s, F_);
+      else if (unknowns)
+        xi = P_.solve_strain(lie::Matrix6(Kt_.asDiagonal()), xi_ref_[j], Lambda, s, F_);
+      else
+        xi = P_.solve_strain(Kt_, xi_ref_[j], Lambda, s, t_u_);
       xi_u_[j] = xi;
       eta_u_[j] = eta;
       g_u_[j] = g;
       if (j == n_ - 1) break;
       const SO3& R = g.rotation();
-      const Vector6 Meta = M.cwiseProduct(eta);
       const Vector6 load = P_.gravity_load(R) + P_.applied_load(R, t_u_) + P_.drag_load(eta);
-      Vector6 dLambda = M.cwiseProduct(c_ * eta + eta_hist_[j]) - se3::coad_apply(eta, Meta) +
-                        se3::coad_apply(xi, Lambda) - load;                            // (3.51)
+      Vector6 dLambda;
+      if (muscles_) {
+        // the full node inertia and the muscles' weight (3.16)-(3.20)
+        const Vector6 Meta = inertia_[j] * eta;
+        dLambda = inertia_[j] * (c_ * eta + eta_hist_[j]) - se3::coad_apply(eta, Meta) +
+                  se3::coad_apply(xi, Lambda) - load -
+                  P_.embedded_weight(R, std::max(0.0, s - 0.5 * ds_), s + 0.5 * ds_, s);
+      } else {
+        const Vector6 Meta = M.cwiseProduct(eta);
+        dLambda = M.cwiseProduct(c_ * eta + eta_hist_[j]) - se3::coad_apply(eta, Meta) +
+                  se3::coad_apply(xi, Lambda) - load;                                   // (3.51)
+      }
       const Vector6 deta = (c_ * xi + xi_hist_[j]) - se3::ad_apply(xi, eta);             // (3.52)
       g = g * SE3::exp(ds_ * xi);
       Lambda += ds_ * dLambda;
       eta += ds_ * deta;
       for (const auto& e : entries_)
-        if (e.node == j + 1) Lambda -= P_.entry_load(e.s, xi, t_u_);
+        if (e.node == j + 1)
+          Lambda -= unknowns ? P_.entry_load(e.s, xi, F_) : P_.entry_load(e.s, xi, t_u_);
     }
     const Vector6 W = P_.tip_load(g.rotation(), t_u_);
-    return (Lambda - W).cwiseQuotient(scale_);
+    Vec r;
+    r.resize(6 + m_);
+    r.template head<6>() = (Lambda - W).cwiseQuotient(scale_);
+    if (unknowns) {
+      for (int j = 0; j < n_; ++j) xi_end_[j] = end_ * xi_u_[j] + (1.0 - end_) * xi_[j];
+      const double L = P_.length();
+      for (int e = 0; e < m_; ++e)
+        r[6 + e] = is_muscle_[e]
+                       ? x[6 + e] - path_length(e, xi_u_) / L
+                       : (path_length(e, xi_end_) - P_.actuators()[which_[e]].target_length(
+                                                        t_end_, rest_[e])) / L;
+    }
+    return r;
   }
 
-  bool finite_difference_jacobian(const Vector6& x, const Vector6& r, int& shots) {
-    for (int k = 0; k < 6; ++k) {
+  template <class Vec, class Mat>
+  bool finite_difference_jacobian(NewtonState<Vec, Mat>& S, const Vec& x, const Vec& r, int& shots) {
+    const auto n = x.size();
+    if (S.J.rows() != n) S.J.setZero(n, n);
+    for (Eigen::Index k = 0; k < n; ++k) {
       const double h = kFdStep * std::max(1.0, std::abs(x[k]));
-      Vector6 xp = x;
+      Vec xp = x;
       xp[k] += h;
-      J_.col(k) = (shoot(xp) - r) / h;
+      S.J.col(k) = (shoot(xp) - r) / h;
       ++shots;
     }
     shoot(x);  // restore the profiles of x
     ++shots;
-    J_valid_ = J_.allFinite();
-    J_c_ = c_;  // the Jacobian depends on the step through c
-    return J_valid_;
+    S.valid = S.J.allFinite();
+    S.c = c_;  // the Jacobian depends on the step through c
+    return S.valid;
+  }
+
+  /// Unknown e's path length on the grid: trapezoid over the nodes, each node's weight the
+  /// overlap of its cell with the span.
+  double path_length(int e, const std::vector<Vector6>& xi) const {
+    const auto& path = P_.actuators()[which_[e]].path;
+    double sum = 0.0;
+    for (int j = 0; j < n_; ++j) {
+      const double w = node_weight_[static_cast<std::size_t>(e) * n_ + j];
+      if (w != 0.0) sum += w * path.length_rate(j * ds_, xi[j]);
+    }
+    return sum;
+  }
+
+  /// Actuator unknowns: which actuators, their node weights and grid rest lengths, the first
+  /// guess (muscles: the length of the initial state; forces: 0).
+  void setup_unknowns(const Vector6& lambda0) {
+    which_ = P_.unknown_actuators();
+    is_muscle_.assign(m_, 0);
+    rest_.assign(m_, 0.0);
+    unknown_.assign(m_, 0.0);
+    node_weight_.assign(static_cast<std::size_t>(m_) * n_, 0.0);
+    xi_end_.assign(n_, Vector6::Zero());
+    const std::vector<Vector6> reference(n_, P_.model().xi_star());
+    for (int e = 0; e < m_; ++e) {
+      is_muscle_[e] = P_.actuators()[which_[e]].drive == ActuatorDrive::muscle;
+      for (int j = 0; j < n_; ++j) {
+        const double s = j * ds_;
+        const double a = std::max(0.0, s - 0.5 * ds_), b = std::min(P_.length(), s + 0.5 * ds_);
+        node_weight_[static_cast<std::size_t>(e) * n_ + j] = P_.span_overlap(which_[e], a, b);
+      }
+      rest_[e] = path_length(e, reference);
+    }
+    VectorU x0(6 + m_);
+    x0.head<6>() = lambda0;
+    for (int e = 0; e < m_; ++e) x0[6 + e] = is_muscle_[e] ? path_length(e, xi_) / P_.length() : 0.0;
+    extended_.prev = extended_.prev2 = x0;
+  }
+
+  /// Muscles: the full constitutive reference of every node, Lambda = Kt (xi - xi_ref) +
+  /// tendons with Kt = K + K_mus + c (V + V_mus) and Kt xi_ref = (K + K_mus) xi* - (V + V_mus) h.
+  /// Kirchhoff rods keep nu_ref = nu* and solve the moment rows for omega_ref.
+  void muscle_references() {
+    const Vector6& xs = P_.model().xi_star();
+    for (int j = 0; j < n_; ++j) {
+      const lie::Matrix6 Ktot = lie::Matrix6(P_.model().K_diag().asDiagonal()) + K_emb_[j];
+      const lie::Matrix6 Vtot = lie::Matrix6(P_.model().V_diag().asDiagonal()) + V_emb_[j];
+      Kt_full_[j] = Ktot + c_ * Vtot;
+      const Vector6 b = Ktot * xs - Vtot * xi_hist_[j];
+      if (P_.is_kirchhoff()) {
+        xi_ref_[j].tail<3>() = xs.tail<3>();
+        xi_ref_[j].head<3>() = Kt_full_[j].topLeftCorner<3, 3>().partialPivLu().solve(
+            Vector3(b.head<3>() - Kt_full_[j].topRightCorner<3, 3>() * xs.tail<3>()));
+      } else {
+        xi_ref_[j] = Kt_full_[j].partialPivLu().solve(b);
+      }
+    }
   }
 
   /// Dissipation and input work of the step: the power at t_u (trapezoid in s) weighted with
@@ -181,8 +343,12 @@ class ShootingStepper final : public Stepper {
       const Vector6 xi_dot = c_ * xi_u_[j] + xi_hist_[j];
       const SO3& R = g_u_[j].rotation();
       dissipated += w * (xi_dot.dot(V.cwiseProduct(xi_dot)) - P_.drag_load(eta_u_[j]).dot(eta_u_[j]));
+      if (muscles_) dissipated += w * P_.embedded_dissipation(xi_dot, j * ds_);
       work += w * P_.applied_load(R, t_u_).dot(eta_u_[j]);
-      if (P_.has_actuators()) work += w * P_.actuator_power(xi_u_[j], xi_dot, j * ds_, t_u_);
+      if (m_ > 0)
+        work += w * P_.actuator_power(xi_u_[j], xi_dot, j * ds_, F_);
+      else if (P_.has_actuators())
+        work += w * P_.actuator_power(xi_u_[j], xi_dot, j * ds_, t_u_);
     }
     work += P_.tip_load(g_u_.back().rotation(), t_u_).dot(eta_u_.back());
     const double w0 = rule_->ledger_start_weight(), w1 = 1.0 - w0;
@@ -204,16 +370,24 @@ class ShootingStepper final : public Stepper {
   int n_;
   double ds_;
   Vector6 scale_, Kt_;
-  double t_u_ = 0.0, dt_ = 0.0, c_ = 0.0, J_c_ = 0.0;
+  double t_u_ = 0.0, t_end_ = 0.0, dt_ = 0.0, c_ = 0.0, end_ = 1.0;
   double dissipated_start_ = 0.0, work_start_ = 0.0;
   std::vector<Vector6> xi_, eta_, xi_u_, eta_u_, xi_hist_, eta_hist_, xi_ref_;
   std::vector<SE3> g_, g_u_;
   std::vector<DynamicProblem::EntryNode> entries_;
-  Matrix6 J_ = Matrix6::Identity();
-  bool J_valid_ = false;
-  Vector6 x_prev_, x_prev2_;
+  NewtonState<Vector6, Matrix6> plain_;  ///< Lambda(0) only
+  NewtonState<VectorU, MatrixU> extended_;  ///< Lambda(0) and the actuator unknowns
   long steps_ = 0;
   Energy ledger_;
+  // Actuator unknowns (muscle lengths, length-controlled forces) and embedded muscles.
+  int m_ = 0;
+  bool muscles_ = false;
+  std::vector<int> which_;
+  std::vector<char> is_muscle_;
+  std::vector<double> rest_, unknown_, node_weight_;  ///< node_weight_: m x N
+  std::vector<Vector6> xi_end_;
+  DynamicProblem::Forces F_{};
+  std::vector<lie::Matrix6> inertia_, K_emb_, V_emb_, Kt_full_;
 };
 
 }  // namespace

@@ -26,6 +26,7 @@ class MidpointRule final : public TimeRule {
                std::span<Vector6> x) override {
     for (std::size_t j = 0; j < x.size(); ++j) x[j] = 2.0 * u[j] - x[j];
   }
+  double end_coefficient() const override { return 2.0; }
   double ledger_start_weight() const override { return 0.0; }
 };
 
@@ -94,6 +95,7 @@ class BdfAlphaRule final : public TimeRule {
       advanced_ = {false, false};
     }
   }
+  double end_coefficient() const override { return steps_ < kStartSteps ? 2.0 : 1.0; }
   // trapezoid once the power at the start of the step is BDF-alpha's own (at t, not t - dt/2)
   double ledger_start_weight() const override { return steps_ > kStartSteps ? 0.5 : 0.0; }
 

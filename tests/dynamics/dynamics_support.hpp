@@ -4,15 +4,21 @@
 // along +z.
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/result/dynamic_result.hpp"
 #include "rodlab/rod/energies.hpp"
+#include "rodlab/solvers/dynamics/bdf_alpha.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/ida_reference.hpp"
+#include "rodlab/solvers/dynamics/implicit_midpoint.hpp"
+#include "rodlab/solvers/dynamics/implicit_midpoint_collocation.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
+#include "rodlab/solvers/dynamics/variational.hpp"
 
 namespace rodlab::testing::dynamics {
 
@@ -25,6 +31,44 @@ inline scene::Scene rod_scene(const std::string& loads, const std::string& tip, 
       "  material: {E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: " + std::to_string(alpha) + "}\n"
       "tip:\n  free: " + tip + "\nloads: " + loads + "\n";
   return io::load_scene_from_string(yaml, "dynamics-test.yaml");
+}
+
+/// The rod (free tip) with YAML lines under `loads:` and an `actuators:` list (each line a list
+/// item, "  - muscle: {...}"); viscosity alpha [Pa s].
+inline scene::Scene actuated_scene(const std::string& loads, const std::string& actuators,
+                                   double alpha = 0.0, const std::string& model = "cosserat") {
+  const std::string yaml =
+      "schema: rodlab.scene/1\nname: actuated-test\nrod:\n  model: " + model +
+      "\n  length: 0.1\n  section: {shape: circle, diameter: 0.01}\n"
+      "  material: {E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: " + std::to_string(alpha) + "}\n"
+      "tip:\n  free: {}\nloads: " + loads + "\nactuators:\n" + actuators;
+  return io::load_scene_from_string(yaml, "actuated-test.yaml");
+}
+
+/// A stepper of the scheme named `scheme` with N nodes, at rest from `initial` (KINSOL / shooting
+/// tolerance tol; ida at rtol = atol = ida_tol).
+inline std::unique_ptr<solvers::dynamics::Stepper> make_scheme(
+    const std::string& scheme, const solvers::dynamics::DynamicProblem& P, int nodes,
+    const solvers::dynamics::RestState& initial, double tol = 1e-10, double ida_tol = 1e-10) {
+  namespace d = solvers::dynamics;
+  if (scheme == "variational") return d::make_variational(P, {nodes, 1e-12, 20}, initial);
+  if (scheme == "implicit-midpoint") return d::make_implicit_midpoint(P, {nodes, tol, 50}, initial);
+  if (scheme == "bdf-alpha") {
+    d::BdfAlphaOptions o;
+    o.nodes = nodes;
+    o.tol = tol;
+    return d::make_bdf_alpha(P, o, initial);
+  }
+  if (scheme == "ida") {
+    d::IdaOptions o;
+    o.nodes = nodes;
+    o.rtol = o.atol = ida_tol;
+    return d::make_ida(P, o, initial);
+  }
+  d::ImplicitMidpointCollocationOptions o;
+  o.nodes = nodes;
+  o.tol = tol;
+  return d::make_implicit_midpoint_collocation(P, o, initial);
 }
 
 /// scenes/viscous-cantilever.yaml with the given viscosity.

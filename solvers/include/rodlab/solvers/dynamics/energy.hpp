@@ -29,4 +29,17 @@ double strain_energy_segments(const rod::RodModel& model, std::span<const Vector
 double strain_energy_nodes(const rod::RodModel& model, std::span<const Vector6> xi_nodes, double ds);
 double gravity_energy(const DynamicProblem& problem, std::span<const SE3> g_nodes, double ds);
 
+// Embedded muscles (docs/dynamics.md "Muscles and length control"): the kinetic energy with the
+// full node inertia of DynamicProblem::node_inertia, 1/2 <eta, M_j eta> (M_j couples linear and
+// angular velocity where a muscle sits off the centreline, (3.20)), and the muscles' own strain
+// and gravity energies, which the schemes add to the rod's (zero without muscles).
+double kinetic_energy(std::span<const lie::Matrix6> inertia, std::span<const Vector6> eta_nodes,
+                      double ds);
+double embedded_strain_energy_segments(const DynamicProblem& problem,
+                                       std::span<const Vector6> xi_segments, double ds);
+double embedded_strain_energy_nodes(const DynamicProblem& problem,
+                                    std::span<const Vector6> xi_nodes, double ds);
+double embedded_gravity_energy(const DynamicProblem& problem, std::span<const SE3> g_nodes,
+                               double ds);
+
 }  // namespace rodlab::solvers::dynamics

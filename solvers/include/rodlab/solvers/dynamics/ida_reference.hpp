@@ -30,7 +30,11 @@
 //
 // Consistent initial conditions: the run starts at rest from the given node poses, so y'0 =
 // f(0, y0) is computed directly (p' = q' = 0, eta' = M^-1 (...), no IDACalcIC).
-// Kirchhoff rods are not supported yet (std::invalid_argument).
+// Muscles: their lengths Delta are algebraic unknowns after D and W, with the residual
+// (Delta - L(y)) / L (index 1; initial values the lengths of the initial poses; their Jacobian
+// row is dense over the poses and their column dense over the velocities, so the Newton matrix
+// stays sparse). Kirchhoff rods and length control (cable displacement, chamber volume: index
+// 3) are not supported (std::invalid_argument naming the schemes that support them).
 #include <memory>
 #include <span>
 

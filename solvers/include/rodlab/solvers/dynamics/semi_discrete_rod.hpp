@@ -45,6 +45,23 @@
 // constraint(); the ledger uses the Kirchhoff strain rate (nu_dot = 0), the constraint forces
 // do no work on the constraint manifold. rest_state() puts the initial poses on the constraint
 // (each segment keeps its rotation and gets nu = nu*).
+//
+// Actuators whose force is not given (DynamicProblem::unknown_actuators(); docs/dynamics.md
+// "Muscles and length control") add one unknown x_e each, which the caller carries next to y:
+// a muscle's length Delta [m] (its force is the law's, F = law(q(t), Delta, Delta*)), or a
+// length-controlled actuator's force F [N] (cable displacement, chamber volume; only with
+// `constrained`: `ida` rejects them, the prescribed length makes the system an index-3 DAE). Their
+// rows (actuator_rows()):
+//   muscle   (x_e - L_e(y_f)) / L      algebraic, at the state where f is evaluated
+//   length   (L_e(y_c) - L_target(t_c)) / L     at the constraint state (collocation: the end
+//                                                of the step, the analogue of SHAKE)
+// with the grid's path length L_e(y) = sum_j o_j |u_e(s_j + ds/2, xi_j)| (o_j the overlap of
+// segment j with the span; the rest length Delta* is the same sum at xi*). Muscles also bring
+// their embedded rod: stiffness and viscosity in the stresses (DynamicProblem::embedded_wrench),
+// the full node inertia M_j of DynamicProblem::node_inertia (eta_dot = M_j^-1 (...): linear and
+// angular accelerations couple where a muscle sits off the centreline, (3.20)) and their weight
+// at the offset. `ida` carries the muscle lengths as algebraic unknowns after D and W (index 1;
+// consistent initial values are the lengths of the initial poses).
 #include <span>
 #include <string>
 #include <vector>
@@ -69,14 +86,15 @@ class SemiDiscreteRod {
   static constexpr int kP = 0, kQ = 3, kEta = 7;
 
   /// `who` names the scheme in error messages. Throws std::invalid_argument for nodes < 3 and,
-  /// unless `constrained`, Kirchhoff rods. The problem must outlive this object.
+  /// unless `constrained`, Kirchhoff rods and length control. The problem must outlive this
+  /// object.
   SemiDiscreteRod(const DynamicProblem& problem, int nodes, const std::string& who,
                   bool constrained = false);
 
   const DynamicProblem& problem() const { return P_; }
   int nodes() const { return n_; }
   double ds() const { return ds_; }
-  /// 13 (N - 1) node unknowns, then D and W.
+  /// 13 (N - 1) node unknowns, then D and W, then the actuator unknowns (muscle lengths; ida).
   int size() const { return dim_; }
   int node_size() const { return iD_; }
   int dissipated_index() const { return iD_; }
@@ -94,36 +112,72 @@ class SemiDiscreteRod {
   /// E I / L^2 [N], the characteristic constraint force.
   double force_scale() const { return force_scale_; }
 
-  /// y at rest at the node poses g0 (base first, nodes() of them), D = W = 0. Throws
-  /// std::invalid_argument for a wrong count.
+  // --- actuator unknowns (see above) ---------------------------------------------------------
+  /// One per DynamicProblem::unknown_actuators(), stored after D and W in y.
+  int unknown_size() const { return m_; }
+  int unknown_index() const { return iX_; }
+  /// Whether unknown e is a muscle's length (else a length-controlled actuator's force).
+  bool unknown_is_length(int e) const { return is_muscle_[e]; }
+  /// The characteristic size of unknown e: L for a length, force_scale() for a force.
+  double unknown_scale(int e) const { return is_muscle_[e] ? P_.length() : force_scale_; }
+  /// Their initial values at the state y: muscle lengths L_e(y), forces 0.
+  Vector initial_unknowns(const ConstRef& y) const;
+  /// The rows of the actuator unknowns (above), after an rhs() at y_f with the same unknowns x:
+  /// the muscles' rows use the lengths of that evaluation; the length-controlled rows evaluate
+  /// the path lengths at (t_c, y_c).
+  void actuator_rows(double t_c, const ConstRef& y_c, const ConstRef& x, Eigen::Ref<Vector> rows) const;
+  /// Path lengths of the actuator unknowns' paths at y (size unknown_size()).
+  void path_lengths(const ConstRef& y, Eigen::Ref<Vector> lengths) const;
+  /// The grid rest length Delta*_e and the target length of unknown e at t (length control).
+  double rest_length(int e) const { return rest_[e]; }
+  double target_length(int e, double t) const;
+  /// The axial forces of the last rhs() evaluation, by actuator.
+  const DynamicProblem::Forces& last_forces() const { return F_; }
+
+  /// y at rest at the node poses g0 (base first, nodes() of them), D = W = 0, muscle lengths
+  /// of the poses. Throws std::invalid_argument for a wrong count.
   Vector rest_state(std::span<const SE3> g0) const;
 
-  /// f(t, y) of y' = f(t, y): y and f of size() (node_size() is enough for y: D and W are not
-  /// read), f of size() (ledger rows included) or node_size() (node rows only).
+  /// f(t, y) of y' = f(t, y): y and f of size() (node_size() is enough for y without actuator
+  /// unknowns: D and W are not read; with them y of size() carries them), f of size() (ledger
+  /// rows, then the rates of the unknowns' path lengths) or node_size() (node rows only).
   void rhs(double t, const ConstRef& y, Eigen::Ref<Vector> f) const;
   /// The same with the constraint forces `forces` (constraint_size(), N) of a Kirchhoff rod.
   void rhs(double t, const ConstRef& y, const ConstRef& forces, Eigen::Ref<Vector> f) const;
+  /// The same with the actuator unknowns x (unknown_size()) given apart from y.
+  void rhs(double t, const ConstRef& y, const ConstRef& forces, const ConstRef& x,
+           Eigen::Ref<Vector> f) const;
   /// c_k(y) = nu(log(g_k^-1 g_(k+1))) / ds - nu* into c (constraint_size()), Kirchhoff rods.
   void constraint(const ConstRef& y, Eigen::Ref<Vector> c) const;
 
   /// Structural pattern of a Newton matrix a I - b df/dy: block tridiagonal node blocks and, with
-  /// the ledger, the two ledger rows over every node column and the ledger diagonal.
+  /// the ledger, the two ledger rows over every node column and the ledger diagonal; then the
+  /// actuator unknowns' columns (dense over the eta rows and the ledger rows) and rows (dense
+  /// over the p, q columns, and their own diagonal).
   SparseMatrix pattern(bool with_ledger) const;
 
   /// J = a I - b df/dy at (t, y) by coloured finite differences, on a matrix with the pattern of
-  /// pattern(J.rows() == size()) (values overwritten; y of size() or node_size()).
+  /// pattern(J.rows() == size()) (values overwritten; y of size() or node_size(); the actuator
+  /// unknowns come from y's tail with the ledger; their rows are d(actuator_rows)/d(y, x), the
+  /// muscles' at y: -dL/dy / L and 1 / L).
   void newton_matrix(double t, const ConstRef& y, double a, double b, SparseMatrix& J) const;
 
-  /// Kirchhoff rods: the pattern of the constrained Newton matrix (node_size() +
-  /// constraint_size() square, no ledger)
-  ///   [ a I - b df/dy (t, y, forces)   - b df/dforces ]   rows: node rows, then c_k
-  ///   [ cy dc/dy (y_c)                  0              ]   columns: node unknowns, then f_k
-  /// (c_k sees p, q of nodes k and k + 1; f_k the eta rows of nodes k and k + 1).
+  /// Rods with constraints at the end of the step (Kirchhoff rods, length control) or actuator
+  /// unknowns: the pattern of the constrained Newton matrix (no ledger)
+  ///   [ a I - b df/dy (t, y, forces, x)   - b df/dforces   - b df/dx ]  node rows
+  ///   [ cy dc/dy (y_c)                     0                0        ]  c_k (Kirchhoff)
+  ///   [ d(actuator_rows)/dy                0                1/L, 0   ]  actuator unknowns
+  /// (c_k sees p, q of nodes k and k + 1; f_k the eta rows of nodes k and k + 1; muscle rows
+  /// -dL/dy(y) / L, length rows cy dL/dy(y_c) / L).
   SparseMatrix constrained_pattern() const;
   /// Fills that matrix by coloured finite differences (three node colours for the node
-  /// columns, perturbing y and y_c together; two segment colours for the forces).
+  /// columns, perturbing y and y_c together; two segment colours for the forces; one
+  /// evaluation per actuator unknown).
   void constrained_newton_matrix(double t, const ConstRef& y, const ConstRef& forces, double a,
                                  double b, const ConstRef& y_c, double cy, SparseMatrix& J) const;
+  void constrained_newton_matrix(double t, const ConstRef& y, const ConstRef& forces,
+                                 const ConstRef& x, double a, double b, const ConstRef& y_c,
+                                 double cy, SparseMatrix& J) const;
 
   /// Poses, velocities and strains of y for the reports below (y: size() or node_size()).
   void set_state(const ConstRef& y) const;
@@ -134,19 +188,49 @@ class SemiDiscreteRod {
   std::vector<result::CenterlineSample> centerline() const;
 
  private:
+  /// Where the blocks of a Newton matrix start: node unknowns at 0, the ledger pair (ida), the
+  /// Kirchhoff forces, the actuator unknowns; n columns in all.
+  struct Layout {
+    bool ledger = false, forces = false;
+    int iF = 0, iX = 0, n = 0;
+  };
+  Layout layout(bool ledger, bool forces) const;
+  SparseMatrix build_pattern(const Layout& lay) const;
+  void fill_newton_matrix(const Layout& lay, double t, const ConstRef& y, const double* forces,
+                          const double* x, double a, double b, const ConstRef& y_c, double cy,
+                          SparseMatrix& J) const;
   void unpack_nodes(const double* y) const;
-  /// f of the node rows into f (node_size()); the ledger powers into diss, work.
+  /// f of the node rows into f (node_size()); the ledger powers into diss, work; the rates of
+  /// the unknowns' path lengths into rates_ and their per-segment terms into seg_len_.
   void evaluate(double t, const double* y, double* f, double& diss, double& work,
-                const double* forces = nullptr) const;
+                const double* forces = nullptr, const double* x = nullptr) const;
   void constraint(const double* y, double* c) const;
+  /// Per-segment path-length terms of the unknowns at y into seg (m x (N - 1)); returns nothing.
+  void segment_lengths(const double* y, std::vector<double>& seg) const;
+  /// A segment's strain as the stresses see it (Kirchhoff: nu = nu*).
+  Vector6 model_strain(const Vector6& xi) const {
+    if (!kirchhoff_) return xi;
+    Vector6 x = xi;
+    x.tail<3>() = nu_star_;
+    return x;
+  }
 
   const DynamicProblem& P_;
   int n_;
   double ds_ = 0.0, omega1_ = 0.0, force_scale_ = 1.0;
   bool kirchhoff_ = false;
   Vector3 nu_star_ = Vector3::Zero();
-  int dim_ = 0, iD_ = 0, iW_ = 0;
+  int dim_ = 0, iD_ = 0, iW_ = 0, iX_ = 0, m_ = 0;
   Vector6 M_, V_;
+  // Actuator unknowns and embedded muscles (see above).
+  bool muscles_ = false, length_control_ = false;
+  std::vector<int> unknown_act_;               ///< actuator index of unknown e
+  std::vector<char> is_muscle_;                ///< unknown e is a muscle length
+  std::vector<double> rest_, seg_weight_;      ///< rest lengths; overlaps (m x (N - 1))
+  std::vector<lie::Matrix6> inertia_, inertia_inv_;  ///< node inertia densities (muscles)
+  mutable DynamicProblem::Forces F_{};
+  mutable std::vector<double> seg_len_, seg_len0_, seg_lenc_, seg_lenc0_;  ///< m x (N - 1)
+  mutable Vector rates_, lengths_, xtmp_;
   Vector scale_;
   std::vector<DynamicProblem::EntryNode> entries_;
   // Work arrays of evaluate() (mutable: the reports unpack the current state).

@@ -41,6 +41,14 @@ struct RestState {
   std::vector<Vector6> xi;
 };
 
+/// An actuator whose force is not given (a muscle, or under length control): its path length on
+/// the scheme's grid in the current state and its axial force in the last step.
+struct ActuatorReading {
+  int actuator = 0;     ///< index in the scene's actuator list
+  double length = 0.0;  ///< [m]
+  double force = 0.0;   ///< [N] (tension positive; a chamber's pressure is -force / A_c)
+};
+
 struct StepStatus {
   bool ok = true;
   std::string reason;  ///< why the step failed (no convergence, instability)
@@ -62,6 +70,8 @@ class Stepper {
   virtual double max_det_deviation() const = 0;
   /// Node poses and strains, base first.
   virtual std::vector<result::CenterlineSample> centerline() const = 0;
+  /// The actuators with unknowns (DynamicProblem::unknown_actuators()), in that order.
+  virtual std::vector<ActuatorReading> actuator_readings() const { return {}; }
 };
 
 }  // namespace rodlab::solvers::dynamics

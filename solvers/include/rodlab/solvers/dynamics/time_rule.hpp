@@ -52,6 +52,9 @@ class TimeRule {
   /// unknowns u and the h of the step.
   virtual void advance(RuleField f, double dt, std::span<const lie::Vector6> u,
                        std::span<const lie::Vector6> h, std::span<lie::Vector6> x) = 0;
+  /// a of x_(i+1) = a u + (1 - a) x_i for the coming step (midpoint: 2; BDF-alpha: 1): the end
+  /// state, for constraints imposed at the end of the step (length control).
+  virtual double end_coefficient() const = 0;
   /// Weight of the power at the start of the coming step in its dissipation and work; the power
   /// at the unknowns gets 1 minus it (midpoint: 0, the midpoint rule; BDF-alpha: 1/2, the
   /// trapezoid).

@@ -19,6 +19,9 @@ namespace rodlab::solvers::dynamics {
 
 /// Highest frequency [rad/s] of `variational` linearised about the reference configuration.
 double variational_max_frequency(const rod::RodModel& model, int nodes);
+/// The same for a problem: with embedded muscles, of the composite section (rod plus muscles'
+/// transported stiffness and inertia), the largest over the grid; else the rod's.
+double variational_max_frequency(const DynamicProblem& problem, int nodes);
 
 /// The largest stable step of `variational` for the linearised rod, with viscosity and laminar
 /// drag (turbulent drag and pre-stress are left to the safety factor).

@@ -1,0 +1,279 @@
+#pragma once
+// The variational stepper (variational.hpp) as a class template, private to solvers/dynamics:
+// Variational<false> is the plain step (variational.cpp), Variational<true> the step with
+// muscles or length control (variational_actuated.cpp, variational_actuators.hpp). The two are
+// instantiated in different translation units on purpose: in one unit the second
+// instantiation's extra calls of small_angle::exp and ::log made GCC stop inlining them into the
+// plain step, which cost it 10-15 % (bench_dynamics, A/B).
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "discrete_legendre.hpp"
+#include "kirchhoff_constraint.hpp"
+#include "rodlab/lie/small_angle.hpp"
+#include "rodlab/solvers/dynamics/variational.hpp"
+#include "variational_actuators.hpp"
+
+namespace rodlab::solvers::dynamics {
+namespace {
+
+namespace small = lie::small_angle;
+
+/// kActuated: the scene has muscles or length-controlled actuators (variational_actuators.hpp);
+/// the plain step is the same code without them.
+template <bool kActuated>
+class Variational final : public Stepper {
+ public:
+  Variational(const DynamicProblem& problem, const VariationalOptions& options,
+              const RestState& initial)
+      : P_(problem), opt_(options), n_(options.nodes), ds_(problem.length() / (n_ - 1)) {
+    if (n_ < 3) throw std::invalid_argument("variational: nodes must be >= 3");
+    const auto& g0 = initial.g;
+    if (static_cast<int>(g0.size()) != n_)
+      throw std::invalid_argument("variational: expected " + std::to_string(n_) +
+                                  " initial poses, got " + std::to_string(g0.size()));
+    kirchhoff_ = problem.is_kirchhoff();
+    nu_star_ = problem.model().xi_star().tail<3>();
+    g_.assign(g0.begin(), g0.end());
+    G_.resize(n_ - 1);
+    xi_.resize(n_ - 1);
+    for (int j = 0; j + 1 < n_; ++j) {
+      G_[j] = g_[j].inverse() * g_[j + 1];
+      xi_[j] = G_[j].log() / ds_;
+      if (kirchhoff_) {
+        // Start on the constraint: a chord of the sampled initial shape is shorter than its arc
+        // by O((kappa ds)^2); the segment keeps its rotation and gets nu = nu*.
+        xi_[j].tail<3>() = nu_star_;
+        G_[j] = SE3::exp(ds_ * xi_[j]);
+        g_[j + 1] = g_[j] * G_[j];
+      }
+    }
+    eta_.assign(n_, Vector6::Zero());
+    mu_.assign(n_, Vector6::Zero());
+    const Vector6 M = problem.model().M_diag();
+    legendre_ = {M, M.cwiseInverse(), options.tol, options.max_iterations};
+    entries_ = problem.entry_nodes(n_);
+    if (kirchhoff_) constraint_.emplace(n_, ds_, nu_star_, legendre_, options.max_iterations);
+    if constexpr (kActuated) {
+      act_.emplace(problem, n_, legendre_);
+      xi_new_.assign(n_ - 1, Vector6::Zero());
+    }
+  }
+
+  StepStatus step(double t, double dt) override {
+    const double t1 = t + dt;
+    const Vector6& V = P_.model().V_diag();
+    // A scene pays only for the loads it has: the distributed wrench and drag are skipped when
+    // absent (adding their zeros changed nothing, so the result is the same bit for bit).
+    const bool applied = (P_.applied_load(SO3(), t1).array() != 0.0).any();
+    const bool drag = P_.has_drag();
+    const bool actuators = P_.has_actuators();
+    double dissipated = 0.0, work = 0.0;
+    kinetic_old_ = 0.0;
+    const DynamicProblem::Forces* F = nullptr;
+    // The actuators' work in the step is F times the change of their path lengths with F the
+    // mean of the forces at the step's two configurations (the last step's and this one's):
+    // exact for a force linear in the length (a constant tension, a linear muscle law), so the
+    // ledger of a conservative tendon force does not drift (docs/dynamics.md).
+    DynamicProblem::Forces F_work;  // set below where actuators exist
+    if (actuators && !kActuated) {
+      const auto F0 = P_.forces(t), F1 = P_.forces(t1);
+      for (std::size_t k = 0; k < F0.size(); ++k) F_work[k] = 0.5 * (F0[k] + F1[k]);
+    }
+    if constexpr (kActuated) {
+      // Pre-pass: the new segments (3.38) and strains, from which the muscles' lengths and the
+      // step's forces follow before any stress is needed.
+      SE3 E = SE3::identity();
+      for (int j = 0; j + 1 < n_; ++j) {
+        const SE3 E_next = small::exp(dt * eta_[j + 1]);
+        G_[j] = E.inverse() * G_[j] * E_next;
+        xi_new_[j] = G_[j].log() / ds_;
+        E = E_next;
+      }
+      F = &act_->forces(t1, xi_new_);
+      F_work = act_->work_forces();
+    }
+    // One pass from the base to the tip: segment j needs E^j and E^(j+1) (3.26) from the old
+    // velocities; node j needs the stresses of segments j - 1 and j (3.41) and then updates its
+    // velocity (3.42), which no later segment reads.
+    SE3 E = SE3::identity();  // E^j; the base does not move
+    Vector6 lambda_prev = Vector6::Zero();
+    for (int j = 0; j + 1 < n_; ++j) {
+      const SE3 E_next = small::exp(dt * eta_[j + 1]);
+      // (3.38)-(3.40): the new strain from exact compatibility, the pose, the stress.
+      if constexpr (!kActuated) G_[j] = E.inverse() * G_[j] * E_next;  // (else in the pre-pass)
+      small::EF k;
+      const Vector6 x = small::log(G_[j], k);  // ds xi
+      const Vector6 xi = x / ds_;
+      const Vector6 xi_dot = (xi - xi_[j]) / dt;
+      const double s_mid = (j + 0.5) * ds_;
+      if (actuators) {
+        work -= ds_ * P_.actuator_length_change(xi_[j], xi, s_mid, F_work) / dt;
+        if constexpr (kActuated) act_->add_segment_power(j, xi_[j], xi, dt);
+      }
+      xi_[j] = xi;
+      g_[j + 1] = g_[j] * G_[j];
+      Vector6 sigma;
+      if constexpr (kActuated) {
+        sigma = P_.internal_wrench(xi, xi_dot, s_mid, *F);  // with the muscles' own stiffness
+        dissipated += ds_ * P_.embedded_dissipation(xi_dot, s_mid);
+      } else {
+        sigma = kirchhoff_ ? kirchhoff_stress(xi, xi_dot, s_mid, t1)
+                           : P_.internal_wrench(xi, xi_dot, s_mid, t1);
+      }
+      const Vector6 lambda = small::dexp_inv_transpose_apply(x, sigma, k);
+      dissipated += ds_ * xi_dot.dot(V.cwiseProduct(xi_dot));
+      if (j > 0 && !node(j, t1, dt, E, lambda, lambda_prev, applied, drag, dissipated, work, F))
+        return diverged(j, t1, dt);
+      lambda_prev = lambda;
+      E = E_next;
+    }
+    const int tip = n_ - 1;
+    if (!node(tip, t1, dt, E, P_.tip_load(g_[tip].rotation(), t1), lambda_prev, applied, drag,
+              dissipated, work, F))
+      return diverged(tip, t1, dt);
+    if constexpr (kActuated) {
+      double power = 0.0;
+      if (!act_->enforce_lengths(t1, dt, G_, xi_, mu_, eta_, power))
+        return StepStatus::failed("variational: the length-control solve " + act_->failure() +
+                                  " (t = " + std::to_string(t1) + " s, dt = " +
+                                  std::to_string(dt) + " s)");
+      work += power;
+    }
+    if (constraint_ && !constraint_->enforce(dt, G_, xi_, mu_, eta_))
+      return constraint_failure(t1, dt);
+    ledger_.dissipated += dt * dissipated;
+    ledger_.work_in += dt * work;
+    return {};
+  }
+
+  Energy energy() const override {
+    Energy e = ledger_;
+    // eta is the velocity over the coming step and the one before was summed during the step:
+    // their mean is the kinetic energy at the current time, to O(dt^2).
+    e.kinetic = 0.5 * (kinetic_old_ + kinetic_energy(P_.model(), eta_, ds_));
+    e.strain = strain_energy_segments(P_.model(), xi_, ds_);
+    e.gravity = gravity_energy(P_, g_, ds_);
+    if constexpr (kActuated) {
+      if (act_->muscles()) {
+        e.kinetic = 0.5 * (kinetic_old_ + kinetic_energy(act_->inertias(), eta_, ds_));
+        e.strain += embedded_strain_energy_segments(P_, xi_, ds_);
+        e.gravity += embedded_gravity_energy(P_, g_, ds_);
+      }
+    }
+    return e;
+  }
+
+  std::vector<ActuatorReading> actuator_readings() const override {
+    if constexpr (kActuated) return act_->readings(xi_);
+    return {};
+  }
+
+  Vector3 tip_position() const override { return g_.back().translation(); }
+
+  double max_det_deviation() const override { return dynamics::max_det_deviation(g_); }
+
+  std::vector<result::CenterlineSample> centerline() const override {
+    return staggered_centerline(g_, xi_, ds_);
+  }
+
+ private:
+  /// (3.41)-(3.42) at node j: the momentum balance with the inner wrench (lambda^j, or the tip
+  /// wrench) and the outer one (lambda^(j-1)), then the new velocity. Accumulates the node's
+  /// kinetic energy (old velocity), drag dissipation and external power.
+  bool node(int j, double t1, double dt, const SE3& E, const Vector6& inner,
+            const Vector6& lambda_prev, bool applied, bool drag, double& dissipated,
+            double& work, const DynamicProblem::Forces* F) {
+    const bool tip = j == n_ - 1;
+    const double w = tip ? 0.5 * ds_ : ds_;
+    const SO3& R = g_[j].rotation();
+    const Vector6 outer = G_[j - 1].coAd_apply(lambda_prev);
+    const Vector6& eta_old = eta_[j];
+    Vector6 bar = P_.gravity_load(R);
+    if constexpr (kActuated) {
+      if (act_->muscles()) {
+        kinetic_old_ += 0.5 * w * eta_old.dot(act_->inertia(j) * eta_old);
+        bar += act_->weight(j, R);
+      } else {
+        kinetic_old_ += 0.5 * w * eta_old.dot(legendre_.M.cwiseProduct(eta_old));
+      }
+    } else {
+      kinetic_old_ += 0.5 * w * eta_old.dot(legendre_.M.cwiseProduct(eta_old));
+    }
+    if (applied) {
+      const Vector6 a = P_.applied_load(R, t1);
+      bar += a;
+      work += w * a.dot(eta_old);
+    }
+    if (drag) {
+      const Vector6 d = P_.drag_load(eta_old);
+      bar += d;
+      dissipated -= w * d.dot(eta_old);
+    }
+    if (tip) work += inner.dot(eta_old);
+    Vector6 force = inner - outer + w * bar;
+    for (const auto& e : entries_) {
+      if (e.node != j) continue;
+      // a point load at the node: its power is entry . eta (as in ida_reference)
+      const Vector6& xi_entry = xi_[tip ? j - 1 : j];
+      Vector6 entry;
+      if constexpr (kActuated) {
+        entry = P_.entry_load(e.s, xi_entry, *F);
+        act_->add_entry_power(e.s, xi_entry, eta_old);
+      } else {
+        entry = P_.entry_load(e.s, xi_entry, t1);
+      }
+      force += entry;
+      work += entry.dot(eta_old);
+    }
+    const Vector6 mu_old = mu_[j];
+    mu_[j] = E.coAd_apply(mu_old) + (dt / w) * force;
+    if constexpr (kActuated) return act_->solve_velocity(j, dt, mu_[j], mu_old, eta_[j]);
+    return legendre_.solve(dt, mu_[j], mu_old, eta_[j]);  // (3.42)
+  }
+
+  /// Kirchhoff rods: the rod's own wrench has no force part (nu = nu* holds; the force across
+  /// the section is the constraint force f of KirchhoffConstraint), the actuators act as usual.
+  Vector6 kirchhoff_stress(Vector6 xi, Vector6 xi_dot, double s, double t) const {
+    xi.tail<3>() = nu_star_;
+    xi_dot.tail<3>().setZero();
+    return P_.internal_wrench(xi, xi_dot, s, t);
+  }
+
+  StepStatus constraint_failure(double t1, double dt) const {
+    return StepStatus::failed("variational: the Kirchhoff constraint solve " +
+                              constraint_->failure() + " (t = " + std::to_string(t1) +
+                              " s, dt = " + std::to_string(dt) + " s)");
+  }
+
+  StepStatus diverged(int j, double t1, double dt) const {
+    // (3.42) is a small perturbation of M eta = mu for any step below the stability limit;
+    // divergence means the explicit scheme blew up.
+    return StepStatus::failed("unstable: variational: Newton on (3.42) diverged at node " +
+                              std::to_string(j) + " (t = " + std::to_string(t1) +
+                              " s, dt = " + std::to_string(dt) + " s)");
+  }
+
+  const DynamicProblem& P_;
+  VariationalOptions opt_;
+  int n_;
+  double ds_;
+  DiscreteLegendre legendre_;  ///< (3.42)
+  std::vector<SE3> g_, G_;
+  std::vector<Vector6> xi_, eta_, mu_;
+  std::vector<DynamicProblem::EntryNode> entries_;
+  Energy ledger_;
+  double kinetic_old_ = 0.0;
+  bool kirchhoff_ = false;
+  Vector3 nu_star_;
+  std::optional<KirchhoffConstraint> constraint_;  ///< Kirchhoff rods only
+  std::optional<VariationalActuators> act_;        ///< muscles, length control (kActuated)
+  std::vector<Vector6> xi_new_;                    ///< the pre-pass's strains (kActuated)
+};
+
+}  // namespace
+
+}  // namespace rodlab::solvers::dynamics
