@@ -20,6 +20,7 @@
 
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/result/dynamic_result.hpp"
+#include "rodlab/result/oscillation.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
@@ -96,19 +97,6 @@ std::string run_text(const DynamicResult& r) {
   return r.scheme + ", N = " + std::to_string(r.nodes) + ", dt = " + format_number(r.dt) +
          " s, " + std::to_string(r.steps) + " steps, wall " + format_number(r.wall_time_s) + " s" +
          (r.converged ? "" : "; NOT CONVERGED: " + r.reason);
-}
-
-/// Mean period of a signal from its upward crossings of its mean (linear interpolation).
-double mean_period(const std::vector<double>& t, const std::vector<double>& x) {
-  double mean = 0.0;
-  for (double v : x) mean += v;
-  mean /= static_cast<double>(x.size());
-  std::vector<double> crossings;
-  for (std::size_t i = 1; i < x.size(); ++i)
-    if (x[i - 1] < mean && x[i] >= mean)
-      crossings.push_back(t[i - 1] + (mean - x[i - 1]) / (x[i] - x[i - 1]) * (t[i] - t[i - 1]));
-  if (crossings.size() < 2) return NAN;
-  return (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
 }
 
 /// The tip of `b` at the times of `a`, by linear interpolation (both series start at 0).
@@ -258,7 +246,7 @@ std::vector<Check> dynamics_checks(const ValidationContext& context) {
                             scene::Initial::static_equilibrium, 4000);
     std::vector<double> x;
     for (const auto& p : r.tip_position) x.push_back(p.x());
-    const double f = 1.0 / mean_period(r.t, x);
+    const double f = 1.0 / result::mean_period(r.t, x);
     const double f_eb = std::pow(1.8751040687119611, 2) / (2 * std::numbers::pi) *
                         std::sqrt(kEI / (kRhoA * std::pow(kL, 4)));
     Check c = range_check("variational: first bending frequency / Euler-Bernoulli (N = 40, P L^2/EI = 1e-3)",

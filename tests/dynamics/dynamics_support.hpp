@@ -10,6 +10,7 @@
 
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/result/dynamic_result.hpp"
+#include "rodlab/result/oscillation.hpp"
 #include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/dynamics/bdf_alpha.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
@@ -119,18 +120,7 @@ inline solvers::dynamics::DynamicSolveOptions options(const std::string& scheme,
   return o;
 }
 
-/// Mean period of a signal from its upward crossings of its mean (linear interpolation).
-inline double mean_period(const std::vector<double>& t, const std::vector<double>& x) {
-  double mean = 0.0;
-  for (double v : x) mean += v;
-  mean /= static_cast<double>(x.size());
-  std::vector<double> crossings;
-  for (std::size_t i = 1; i < x.size(); ++i)
-    if (x[i - 1] < mean && x[i] >= mean)
-      crossings.push_back(t[i - 1] + (mean - x[i - 1]) / (x[i] - x[i - 1]) * (t[i] - t[i - 1]));
-  if (crossings.size() < 2) return NAN;
-  return (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-}
+using result::mean_period;  // rodlab/result/oscillation.hpp
 
 inline std::vector<double> tip_x(const result::DynamicResult& r) {
   std::vector<double> x;
