@@ -28,6 +28,23 @@ double auto_dt(const scene::Scene& s, int nodes) {
   return solvers::dynamics::auto_time_step(p, "variational", nodes);
 }
 
+/// The settling tests' scene: released straight under gravity with strong laminar drag.
+scene::Scene settling_scene(const std::string& model) {
+  return rod_scene(
+      "{gravity: [-9.81, 0, 0], drag: {fluid_density: 1000, laminar: [0, 0, 0, 1.6e-3, 1.6e-3, 1.6e-3]}}",
+      "{}", 0.0, model);
+}
+
+/// The statics tip of a scene: chebyshev at N = 24 (exact to 1e-13 m here).
+lie::Vector3 static_tip(const scene::Scene& s) {
+  solvers::statics::StaticSolveOptions so;
+  so.scheme = "chebyshev";
+  so.nodes = 24;
+  const auto eq = solvers::statics::solve_static(s, so);
+  BOOST_REQUIRE(eq.converged);
+  return eq.centerline.back().pose.translation();
+}
+
 }  // namespace
 
 // Small free vibration (P L^2 / EI = 1e-3) of the cantilever: the period against the
@@ -99,15 +116,8 @@ BOOST_AUTO_TEST_CASE(damped_energy_balance) {
 // variational grid's discretisation error, which falls at second order in ds (tip half cell).
 // Measured: 2.03e-5, 5.07e-6, 1.27e-6 m at N = 6, 11, 21 (orders 2.004, 2.001).
 BOOST_AUTO_TEST_CASE(settles_to_static_equilibrium_at_second_order) {
-  const auto s = rod_scene(
-      "{gravity: [-9.81, 0, 0], drag: {fluid_density: 1000, laminar: [0, 0, 0, 1.6e-3, 1.6e-3, 1.6e-3]}}",
-      "{}");
-  solvers::statics::StaticSolveOptions so;
-  so.scheme = "chebyshev";
-  so.nodes = 24;
-  const auto eq = solvers::statics::solve_static(s, so);
-  BOOST_REQUIRE(eq.converged);
-  const lie::Vector3 tip = eq.centerline.back().pose.translation();
+  const auto s = settling_scene("cosserat");
+  const lie::Vector3 tip = static_tip(s);
   std::vector<double> errors;
   for (int n : {6, 11, 21}) {
     const auto r = solve_dynamic(s, options("variational", n, auto_dt(s, n), 2.5, scene::Initial::straight));
@@ -178,15 +188,8 @@ actuators:
 // constraint forces it could not carry its weight at all (docs/dynamics.md). The error is the
 // grid's discretisation error and falls at second order in ds, as for Cosserat rods.
 BOOST_AUTO_TEST_CASE(kirchhoff_settles_to_static_equilibrium_at_second_order) {
-  const auto s = rod_scene(
-      "{gravity: [-9.81, 0, 0], drag: {fluid_density: 1000, laminar: [0, 0, 0, 1.6e-3, 1.6e-3, 1.6e-3]}}",
-      "{}", 0.0, "kirchhoff");
-  solvers::statics::StaticSolveOptions so;
-  so.scheme = "chebyshev";
-  so.nodes = 24;
-  const auto eq = solvers::statics::solve_static(s, so);
-  BOOST_REQUIRE(eq.converged);
-  const lie::Vector3 tip = eq.centerline.back().pose.translation();
+  const auto s = settling_scene("kirchhoff");
+  const lie::Vector3 tip = static_tip(s);
   std::vector<double> errors;
   for (int n : {6, 11, 21}) {
     const auto r = solve_dynamic(s, options("variational", n, auto_dt(s, n), 2.5, scene::Initial::straight));

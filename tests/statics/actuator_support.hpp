@@ -5,6 +5,8 @@
 // twist.
 #include <boost/test/unit_test.hpp>
 
+#include <numbers>
+
 #include <Eigen/Dense>
 
 #include "rodlab/solvers/statics/solve_static.hpp"
@@ -32,6 +34,23 @@ inline result::StaticResult solve(const StaticProblem& P, const char* scheme, in
   BOOST_TEST(r.max_det_deviation <= 1e-13);
   BOOST_TEST(r.max_orthogonality_error <= 1e-13);
   return r;
+}
+
+/// The volume-controlled chamber (2 % over its rest volume) on [0, 0.0613] and the muscle on
+/// [0.0287, L] (test_kinsol_actuators, test_chebyshev_actuators): two extra unknowns.
+inline void add_chamber_and_muscle(StaticProblem& P) {
+  auto a = straight(ActuatorKind::fluidic, 0.0, 0.003, 0.0, 0.0613);
+  a.chamber_area = std::numbers::pi * 1e-6;
+  a.input = 1.02 * 0.0613 * a.chamber_area;
+  a.target_length = 0.0;
+  P.add_actuator(a);
+  auto mu = straight(ActuatorKind::muscle, 0.003, 0.0, 0.0287, kL);
+  mu.input = 1.5;
+  mu.law = loads::make_muscle_law("linear", 0.2, 0.8);
+  const auto pa = rod::properties(rod::Circle{0.001});
+  const double Ea = 5e6;
+  mu.embedded_stiffness << Ea * pa.Ix, Ea * pa.Iy, Ea / 2.6 * pa.Jt, Ea / 2.6 * pa.A, Ea / 2.6 * pa.A, Ea * pa.A;
+  P.add_actuator(mu);
 }
 
 /// The tip position of a result.

@@ -48,23 +48,6 @@ ActuatorTerm routed_cable(double tension) {
   return c;
 }
 
-/// The volume-controlled chamber (2 % over its rest volume) on [0, 0.0613] and the muscle on
-/// [0.0287, L] of test_kinsol_actuators: two extra unknowns.
-void add_chamber_and_muscle(StaticProblem& P) {
-  auto a = straight(ActuatorKind::fluidic, 0.0, 0.003, 0.0, 0.0613);
-  a.chamber_area = std::numbers::pi * 1e-6;
-  a.input = 1.02 * 0.0613 * a.chamber_area;
-  a.target_length = 0.0;
-  P.add_actuator(a);
-  auto mu = straight(ActuatorKind::muscle, 0.003, 0.0, 0.0287, kL);
-  mu.input = 1.5;
-  mu.law = loads::make_muscle_law("linear", 0.2, 0.8);
-  const auto pa = rod::properties(rod::Circle{0.001});
-  const double Ea = 5e6;
-  mu.embedded_stiffness << Ea * pa.Ix, Ea * pa.Iy, Ea / 2.6 * pa.Jt, Ea / 2.6 * pa.A, Ea / 2.6 * pa.A, Ea * pa.A;
-  P.add_actuator(mu);
-}
-
 /// Spectral convergence of the tip against rkmk-rk4 at N = 401, with kinsol at N = 81 as a
 /// second reference. Measured (tip errors in m at N = 12, 24, 32, noted per case): the error at
 /// N = 24 is 3e-14 .. 3.2e-10 m, and from N = 12 to 24 it falls by 4e4 .. 1e7, an observed

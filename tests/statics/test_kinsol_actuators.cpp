@@ -120,18 +120,7 @@ BOOST_AUTO_TEST_CASE(volume_control_and_muscle) {
   const auto m = table21();
   StaticProblem P(m, lie::SE3::identity());
   P.set_gravity(loads::Gravity(m, lie::Vector3(-9.81, 0, 0)));
-  auto a = straight(ActuatorKind::fluidic, 0.0, 0.003, 0.0, 0.0613);
-  a.chamber_area = std::numbers::pi * 1e-6;
-  a.input = 1.02 * 0.0613 * a.chamber_area;  // 2 % more than the rest volume
-  a.target_length = 0.0;
-  P.add_actuator(a);
-  auto mu = straight(ActuatorKind::muscle, 0.003, 0.0, 0.0287, kL);
-  mu.input = 1.5;
-  mu.law = loads::make_muscle_law("linear", 0.2, 0.8);
-  const auto pa = rod::properties(rod::Circle{0.001});
-  const double Ea = 5e6;
-  mu.embedded_stiffness << Ea * pa.Ix, Ea * pa.Iy, Ea / 2.6 * pa.Jt, Ea / 2.6 * pa.A, Ea / 2.6 * pa.A, Ea * pa.A;
-  P.add_actuator(mu);
+  add_chamber_and_muscle(P);  // 2 % over the chamber's rest volume
   check_order_four(P, "volume control and muscle");
 }
 
