@@ -13,9 +13,9 @@ namespace rodlab::cli {
 namespace {
 
 constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
-constexpr std::array<OptionSpec, 11> kOptions{
-    kSchemeOption,      kNodesOption,   kTolOption, kDtOption,   kTEndOption,
-    kOutputEveryOption, kOutFileOption, kSetOption, kRtolOption, kAtolOption, kAlphaOption};
+constexpr std::array<OptionSpec, 12> kOptions{
+    kSchemeOption,  kNodesOption, kTolOption,  kDtOption,   kTEndOption,  kOutputEveryOption,
+    kOutFileOption, kSetOption,   kRtolOption, kAtolOption, kAlphaOption, kGridOption};
 
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);

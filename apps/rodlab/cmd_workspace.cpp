@@ -78,6 +78,7 @@ int run(const Invocation& inv) {
     ws.solve.tol = run.tol;
     ws.solve.max_iterations = run.max_iterations;
     ws.solve.alpha = run.alpha;
+    ws.solve.grid = run.grid;
     ws.solve.initial = scene.dynamics ? scene.dynamics->initial : scene::Initial::straight;
     ws.solve.dt = run.dt.automatic
                       ? solvers::dynamics::auto_time_step(

@@ -116,6 +116,12 @@ SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::stri
     else
       reader.problem("--alpha: must be a number in [-0.5, 0] (got " + *alpha + ")");
   }
+  if (const auto grid = reader.text(kGridOption.name)) {
+    if (solvers::dynamics::shooting_grid_from_name(*grid))
+      o.grid = *grid;
+    else
+      reader.problem("--grid: must be euler or staggered (got " + *grid + ")");
+  }
   return o;
 }
 
@@ -182,6 +188,8 @@ DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& 
   run.rtol = options.rtol.value_or(run.rtol);
   run.atol = options.atol.value_or(run.atol);
   run.alpha = options.alpha.value_or(scene.solver.alpha.value_or(run.alpha));
+  run.grid = *solvers::dynamics::shooting_grid_from_name(
+      options.grid.value_or(scene.solver.grid.value_or("euler")));
   return run;
 }
 

@@ -11,6 +11,7 @@
 
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/scene/scene.hpp"
+#include "rodlab/solvers/dynamics/shooting_stepper.hpp"
 #include "rodlab/solvers/schemes.hpp"
 
 #include "options.hpp"
@@ -39,6 +40,11 @@ inline constexpr OptionSpec kAtolOption{
 inline constexpr OptionSpec kAlphaOption{
     "--alpha", "X",
     "bdf-alpha: alpha in [-0.5, 0] (0 BDF2, -0.5 trapezoidal); default: solver.alpha, else -0.2"};
+inline constexpr OptionSpec kGridOption{
+    "--grid", "euler|staggered",
+    "implicit-midpoint, bdf-alpha: the shooting march's spatial grid, euler (explicit Euler RKMK "
+    "on the nodes, the thesis) or staggered (the grid of variational and ida, second order); "
+    "default: solver.grid, else euler"};
 inline constexpr OptionSpec kOutputEveryOption{
     "--output-every", "K", "record every K-th step, integer >= 1; default: dynamics.output_every"};
 
@@ -70,6 +76,7 @@ struct SolveOptions {
   std::optional<int> output_every;
   std::optional<double> rtol, atol;
   std::optional<double> alpha;  ///< bdf-alpha
+  std::optional<std::string> grid;  ///< implicit-midpoint, bdf-alpha: "euler" or "staggered"
 };
 
 /// Reads the options of `command` that are among the shared ones above, recording problems
@@ -111,6 +118,7 @@ struct DynamicRun {
   int output_every = 1;
   double rtol = 1e-10, atol = 1e-10;  ///< ida's tolerances
   double alpha = -0.2;                ///< bdf-alpha's parameter (solver.alpha, --alpha)
+  solvers::dynamics::ShootingGrid grid = solvers::dynamics::ShootingGrid::euler;  ///< --grid
 };
 
 /// Combine options and scene; throws io::SceneError when the scene's own scheme does not fit

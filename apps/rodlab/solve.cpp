@@ -30,6 +30,7 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicRun&
   options.rtol = run.rtol;
   options.atol = run.atol;
   options.alpha = run.alpha;
+  options.grid = run.grid;
   if (scene.dynamics) options.initial = scene.dynamics->initial;
   return solvers::dynamics::solve_dynamic(scene, options);
 }

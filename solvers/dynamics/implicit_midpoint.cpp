@@ -8,7 +8,7 @@ namespace rodlab::solvers::dynamics {
 std::unique_ptr<Stepper> make_implicit_midpoint(const DynamicProblem& problem,
                                                 const ImplicitMidpointOptions& options,
                                                 const RestState& initial) {
-  return make_shooting_stepper(problem, {options.nodes, options.tol, options.max_iterations},
+  return make_shooting_stepper(problem, {options.nodes, options.tol, options.max_iterations, options.grid},
                                initial, make_midpoint_rule());
 }
 

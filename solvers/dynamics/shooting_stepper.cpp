@@ -1,5 +1,8 @@
 #include "rodlab/solvers/dynamics/shooting_stepper.hpp"
 
+#include "shooting_newton.hpp"
+#include "staggered_shooting_stepper.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -14,27 +17,12 @@ namespace {
 using lie::Matrix6;
 namespace se3 = lie::se3;
 
-/// Relative finite-difference step of the Jacobian columns (scaled unknowns).
-constexpr double kFdStep = 1e-7;
-/// A Newton step that does not reduce the residual by this factor triggers a fresh Jacobian.
-constexpr double kSlowRatio = 0.5;
-
 /// Shooting unknowns with actuator unknowns: Lambda(0) and one per muscle or length-controlled
 /// actuator (fixed capacity: no allocation in a step).
 constexpr int kMaxShootingUnknowns = 6 + DynamicProblem::kMaxActuators;
 using VectorU = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxShootingUnknowns, 1>;
 using MatrixU = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxShootingUnknowns,
                               kMaxShootingUnknowns>;
-
-/// Newton's state across steps for one kind of unknown vector: Broyden's Jacobian, the step
-/// constant it was computed for, the last two solutions (linear predictor).
-template <class Vec, class Mat>
-struct NewtonState {
-  Mat J;
-  bool valid = false;
-  double c = 0.0;
-  Vec prev, prev2;
-};
 
 class ShootingStepper final : public Stepper {
  public:
@@ -65,8 +53,7 @@ class ShootingStepper final : public Stepper {
     entries_ = problem.entry_nodes(n_);
     m_ = problem.unknown_count();
     if (m_ == 0) {
-      plain_.J.setIdentity();
-      plain_.prev = plain_.prev2 = x0;
+      plain_.start(x0);
     } else {
       setup_unknowns(x0);
     }
@@ -147,46 +134,15 @@ class ShootingStepper final : public Stepper {
                               std::to_string(t) + " s (dt = " + std::to_string(dt_) + " s)");
   }
 
-  /// Newton on the shooting unknowns x (Lambda(0) scaled, then the actuator unknowns): a
-  /// finite-difference Jacobian, Broyden updates, reused across steps, a linear predictor.
+  /// Newton on the shooting unknowns x (Lambda(0) scaled, then the actuator unknowns):
+  /// shooting_newton.hpp.
   template <class Vec, class Mat>
-  StepStatus solve(NewtonState<Vec, Mat>& S, double t) {
-    Vec x = steps_ >= 2 ? Vec(2.0 * S.prev - S.prev2) : S.prev;
-    int shots = 0;
-    Vec r = shoot(x);
-    ++shots;
-    if (!S.valid || c_ != S.c) {
-      if (!finite_difference_jacobian(S, x, r, shots))
-        return failure("the Jacobian is not finite", t);
-    }
-    bool fresh = false;
-    auto norm = [](const Vec& v) { return v.template lpNorm<Eigen::Infinity>(); };
-    while (!(norm(r) <= opt_.tol)) {
-      if (shots >= opt_.max_iterations || !r.allFinite())
-        return failure("single shooting did not converge (tip residual " +
-                       std::to_string(norm(r)) + ")", t);
-      const Eigen::PartialPivLU<Mat> lu(S.J);
-      const Vec dx = -lu.solve(r);
-      if (!dx.allFinite()) return failure("the shooting Jacobian is singular", t);
-      const Vec r_new = shoot<Vec>(x + dx);
-      ++shots;
-      if (!(norm(r_new) <= kSlowRatio * norm(r)) && !fresh) {
-        // Broyden's secant model went stale: rebuild the Jacobian where we stand.
-        if (!finite_difference_jacobian(S, x, r, shots))
-          return failure("the Jacobian is not finite", t);
-        fresh = true;
-        continue;
-      }
-      // Broyden's rank-one update of the secant model.
-      S.J += ((r_new - r) - S.J * dx) * dx.transpose() / dx.squaredNorm();
-      x += dx;
-      r = r_new;
-      fresh = false;
-    }
-    S.prev2 = S.prev;
-    S.prev = x;
+  StepStatus solve(ShootingNewton<Vec, Mat>& newton, double t) {
+    const ShootingOutcome out = newton.solve([this](const Vec& x) { return shoot<Vec>(x); }, c_,
+                                             steps_ >= 2, opt_.tol, opt_.max_iterations);
+    if (!out.failure.empty()) return failure(out.failure, t);
     StepStatus status;
-    status.iterations = shots;
+    status.iterations = out.shots;
     return status;
   }
 
@@ -258,24 +214,6 @@ class ShootingStepper final : public Stepper {
     return r;
   }
 
-  template <class Vec, class Mat>
-  bool finite_difference_jacobian(NewtonState<Vec, Mat>& S, const Vec& x, const Vec& r, int& shots) {
-    const auto n = x.size();
-    if (S.J.rows() != n) S.J.setZero(n, n);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const double h = kFdStep * std::max(1.0, std::abs(x[k]));
-      Vec xp = x;
-      xp[k] += h;
-      S.J.col(k) = (shoot(xp) - r) / h;
-      ++shots;
-    }
-    shoot(x);  // restore the profiles of x
-    ++shots;
-    S.valid = S.J.allFinite();
-    S.c = c_;  // the Jacobian depends on the step through c
-    return S.valid;
-  }
-
   /// Unknown e's path length on the grid: trapezoid over the nodes, each node's weight the
   /// overlap of its cell with the span.
   double path_length(int e, const std::vector<Vector6>& xi) const {
@@ -310,7 +248,7 @@ class ShootingStepper final : public Stepper {
     VectorU x0(6 + m_);
     x0.head<6>() = lambda0;
     for (int e = 0; e < m_; ++e) x0[6 + e] = is_muscle_[e] ? path_length(e, xi_) / P_.length() : 0.0;
-    extended_.prev = extended_.prev2 = x0;
+    extended_.start(x0);
   }
 
   /// Muscles: the full constitutive reference of every node, Lambda = Kt (xi - xi_ref) +
@@ -375,8 +313,8 @@ class ShootingStepper final : public Stepper {
   std::vector<Vector6> xi_, eta_, xi_u_, eta_u_, xi_hist_, eta_hist_, xi_ref_;
   std::vector<SE3> g_, g_u_;
   std::vector<DynamicProblem::EntryNode> entries_;
-  NewtonState<Vector6, Matrix6> plain_;  ///< Lambda(0) only
-  NewtonState<VectorU, MatrixU> extended_;  ///< Lambda(0) and the actuator unknowns
+  ShootingNewton<Vector6, Matrix6> plain_;  ///< Lambda(0) only
+  ShootingNewton<VectorU, MatrixU> extended_;  ///< Lambda(0) and the actuator unknowns
   long steps_ = 0;
   Energy ledger_;
   // Actuator unknowns (muscle lengths, length-controlled forces) and embedded muscles.
@@ -397,7 +335,19 @@ std::unique_ptr<Stepper> make_shooting_stepper(const DynamicProblem& problem,
                                                const RestState& initial,
                                                std::unique_ptr<TimeRule> rule) {
   if (!rule) throw std::invalid_argument("shooting stepper: no time rule");
+  if (options.grid == ShootingGrid::staggered)
+    return make_staggered_shooting_stepper(problem, options, initial, std::move(rule));
   return std::make_unique<ShootingStepper>(problem, options, initial, std::move(rule));
+}
+
+std::string_view shooting_grid_name(ShootingGrid grid) {
+  return grid == ShootingGrid::staggered ? "staggered" : "euler";
+}
+
+std::optional<ShootingGrid> shooting_grid_from_name(std::string_view name) {
+  if (name == "euler") return ShootingGrid::euler;
+  if (name == "staggered") return ShootingGrid::staggered;
+  return std::nullopt;
 }
 
 }  // namespace rodlab::solvers::dynamics

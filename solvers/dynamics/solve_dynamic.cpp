@@ -58,11 +58,12 @@ std::unique_ptr<Stepper> make_stepper(const DynamicProblem& problem,
   if (options.scheme == "variational")
     return make_variational(problem, {options.nodes, std::min(options.tol, 1e-12), 20}, initial);
   if (options.scheme == "implicit-midpoint")
-    return make_implicit_midpoint(problem, {options.nodes, options.tol, options.max_iterations},
-                                  initial);
+    return make_implicit_midpoint(
+        problem, {options.nodes, options.tol, options.max_iterations, options.grid}, initial);
   if (options.scheme == "bdf-alpha")
     return make_bdf_alpha(problem,
-                          {options.nodes, options.tol, options.max_iterations, options.alpha},
+                          {options.nodes, options.tol, options.max_iterations, options.alpha,
+                           options.grid},
                           initial);
   if (options.scheme == "ida") {
     IdaOptions io;

@@ -140,6 +140,7 @@ BOOST_AUTO_TEST_CASE(apply_forms_and_blocks) {
   Worst so3_apply("so3::dexp_apply - dexp y"), so3_inv_apply("so3::dexp_inv_apply - dexp_inv y"),
       se3_apply("se3::dexp_apply - dexp y"), se3_inv_apply("se3::dexp_inv_apply - dexp_inv y"),
       se3_inv_t_apply("se3::dexp_inv_transpose_apply - dexp_inv^T y"),
+      se3_t_apply("se3::dexp_transpose_apply - dexp^T y"),
       blocks("se3 dexp, dexp_inv diagonal blocks - so3 ones"),
       zero_block("se3 dexp, dexp_inv upper-right block");
   const auto& x = twists();
@@ -154,6 +155,9 @@ BOOST_AUTO_TEST_CASE(apply_forms_and_blocks) {
         max_abs_diff(so3::dexp_apply(w, y3), Vector3(A * y3)) / ((1.0 + max_abs(A)) * 4.0), label);
     se3_apply.update(
         max_abs_diff(se3::dexp_apply(xi, y), Vector6(D * y)) / ((1.0 + max_abs(D)) * 4.0), label);
+    se3_t_apply.update(max_abs_diff(se3::dexp_transpose_apply(xi, y), Vector6(D.transpose() * y)) /
+                           ((1.0 + max_abs(D)) * 4.0),
+                       label);
     double block = std::max(max_abs_diff(D.topLeftCorner<3, 3>(), A),
                             max_abs_diff(D.bottomRightCorner<3, 3>(), A)) /
                    (1.0 + max_abs(A));
@@ -180,7 +184,8 @@ BOOST_AUTO_TEST_CASE(apply_forms_and_blocks) {
     zero_block.update(zero, label);
   }
   for (Worst* w :
-       {&so3_apply, &so3_inv_apply, &se3_apply, &se3_inv_apply, &se3_inv_t_apply, &blocks})
+       {&so3_apply, &so3_inv_apply, &se3_apply, &se3_inv_apply, &se3_inv_t_apply, &se3_t_apply,
+        &blocks})
     w->check(kAlgebraTol);
   zero_block.check(0.0);
 }

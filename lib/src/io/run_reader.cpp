@@ -64,7 +64,7 @@ scene::Dynamics read_dynamics(Checker& c, const Field& f) {
 
 scene::Solver read_solver(Checker& c, const Field& f) {
   scene::Solver s;
-  if (!c.keys(f, {"scheme", "nodes", "tol", "max_iterations", "alpha"})) return s;
+  if (!c.keys(f, {"scheme", "nodes", "tol", "max_iterations", "alpha", "grid"})) return s;
   const auto all_names = names(false);
   if (auto k = c.choice(c.child(f, "scheme"), all_names)) s.scheme = std::string(all_names[*k]);
   if (auto nodes = c.integer(c.child(f, "nodes"), 2)) s.nodes = *nodes;
@@ -72,6 +72,9 @@ scene::Solver read_solver(Checker& c, const Field& f) {
   if (auto it = c.integer(c.child(f, "max_iterations"), 1)) s.max_iterations = *it;
   // bdf-alpha: 0 is BDF2, -0.5 the trapezoidal rule (Till, Aloi & Rucker 2019)
   s.alpha = c.number(c.child(f, "alpha"), Range{-0.5, 0.0, false, false});
+  // implicit-midpoint, bdf-alpha: the spatial grid of the shooting march (docs/dynamics.md)
+  static constexpr std::string_view kGrids[] = {"euler", "staggered"};
+  if (auto k = c.choice(c.child(f, "grid"), kGrids)) s.grid = std::string(kGrids[*k]);
   return s;
 }
 

@@ -87,6 +87,23 @@ inline Vector6 dexp_apply(const Vector6& xi, const Vector6& y) {
   return join(top, B_yw + A_yv);
 }
 
+/// dexp_xi^T lambda for a wrench lambda = [m; f], without forming a matrix: with dexp_xi =
+/// [A 0; B A] its transpose is [A^T B^T; 0 A^T], and A^T = A(-omega), B^T = B(-xi) (A even in
+/// nothing but omega's sign, B odd; see dexp_apply). The inverse of dexp_inv_transpose_apply:
+/// the stress sigma from the discrete stress lambda of (3.40).
+inline Vector6 dexp_transpose_apply(const Vector6& xi, const Vector6& lambda) {
+  const Vector3 w = xi.head<3>(), v = xi.tail<3>();
+  const Vector3 m = lambda.head<3>(), f = lambda.tail<3>();
+  const double t = w.norm();
+  const double b = coefficients::b(t), c = coefficients::c(t);
+  const Vector3 w_m = w.cross(m), w_f = w.cross(f), v_f = v.cross(f);
+  const Vector3 AT_m = m - b * w_m + c * w.cross(w_m);
+  const Vector3 AT_f = f - b * w_f + c * w.cross(w_f);
+  const Vector3 BT_f = -b * v_f + c * (w.cross(v_f) + v.cross(w_f)) +
+                       w.dot(v) * (-coefficients::d1(t) * w_f + coefficients::d2(t) * w.cross(w_f));
+  return join(AT_m + BT_f, AT_f);
+}
+
 /// dexp^-1_xi y, valid for |omega| < 2 pi, without forming a matrix.
 inline Vector6 dexp_inv_apply(const Vector6& xi, const Vector6& y) {
   const Vector3 w = xi.head<3>(), v = xi.tail<3>();

@@ -138,6 +138,9 @@ struct Solver {
   double tol = 1e-10;
   int max_iterations = 50;
   std::optional<double> alpha;  ///< `bdf-alpha`: alpha in [-0.5, 0]; nullopt: the scheme's default
+  /// `implicit-midpoint`, `bdf-alpha`: the march's spatial grid, "euler" (the thesis) or
+  /// "staggered"; nullopt: euler
+  std::optional<std::string> grid;
 };
 
 struct Scene {

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/shooting_stepper.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 
 namespace rodlab::solvers::dynamics {
@@ -20,6 +21,7 @@ struct BdfAlphaOptions {
   double tol = 1e-10;       ///< on the tip residual, wrenches scaled by E I / L and E I / L^2
   int max_iterations = 50;  ///< shooting integrations per step, Jacobian columns included
   double alpha = kDefaultBdfAlpha;  ///< in [-0.5, 0]
+  ShootingGrid grid = ShootingGrid::euler;  ///< the march's spatial grid (shooting_stepper.hpp)
 };
 
 /// Starts at rest from `initial` (options.nodes nodes). Throws std::invalid_argument for alpha

@@ -1,7 +1,9 @@
 #pragma once
 // The shooting stepper shared by `implicit-midpoint` and `bdf-alpha`: a time-difference rule
 // (time_rule.hpp) in time, explicit Euler RKMK in space, single shooting (thesis Algorithm 2,
-// (3.46)-(3.54); Till, Aloi & Rucker 2019); docs/dynamics.md.
+// (3.46)-(3.54); Till, Aloi & Rucker 2019); docs/dynamics.md. This is the default grid
+// (ShootingGrid::euler); ShootingGrid::staggered marches the semi-discrete rod of `ida` instead
+// (staggered_shooting_stepper.hpp: second order in s, its undamped energy bounded).
 //
 // Each step solves, for the unknown profiles at t_u = t + theta dt with x_dot = c x + h
 // (x = xi, eta), the BVP in s
@@ -19,6 +21,8 @@
 // Newton on Lambda(0): finite-difference Jacobian, Broyden updates, reused across steps, with a
 // linear predictor from the last two steps.
 #include <memory>
+#include <optional>
+#include <string_view>
 
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
@@ -26,10 +30,20 @@
 
 namespace rodlab::solvers::dynamics {
 
+/// The spatial grid of a shooting march (`solver.grid`, `--grid`).
+enum class ShootingGrid {
+  euler,     ///< nodes, explicit Euler RKMK (the thesis' Algorithm 2)
+  staggered  ///< nodes and segments of `variational` / `ida` (staggered_shooting_stepper.hpp)
+};
+/// "euler" / "staggered".
+std::string_view shooting_grid_name(ShootingGrid grid);
+std::optional<ShootingGrid> shooting_grid_from_name(std::string_view name);
+
 struct ShootingOptions {
   int nodes = 20;
   double tol = 1e-10;       ///< on the tip residual, wrenches scaled by E I / L and E I / L^2
   int max_iterations = 50;  ///< shooting integrations per step, Jacobian columns included
+  ShootingGrid grid = ShootingGrid::euler;
 };
 
 /// Starts at rest from `initial` (options.nodes nodes).

@@ -7,6 +7,7 @@
 #include "rodlab/result/dynamic_result.hpp"
 #include "rodlab/scene/scene.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/shooting_stepper.hpp"
 
 namespace rodlab::solvers::dynamics {
 
@@ -18,6 +19,7 @@ struct DynamicSolveOptions {
   int output_every = 1;     ///< record every k-th step (and the last one)
   double tol = 1e-10;       ///< nonlinear solves inside a step
   int max_iterations = 50;  ///< per nonlinear solve
+  ShootingGrid grid = ShootingGrid::euler;  ///< `implicit-midpoint`, `bdf-alpha`: solver.grid
   double alpha = -0.2;      ///< `bdf-alpha`: in [-0.5, 0] (0 BDF2, -0.5 trapezoidal; Till 2019: -0.2)
   double rtol = 1e-10;      ///< `ida`: relative tolerance of the time integration
   double atol = 1e-10;      ///< `ida`: absolute tolerance (scaled per component, ida_reference.hpp)

@@ -1,0 +1,132 @@
+#pragma once
+// Newton on the unknowns of single shooting, shared by the two marches of the shooting steppers
+// (shooting_stepper.cpp: explicit Euler RKMK on the nodes, thesis Algorithm 2;
+// staggered_shooting_stepper.cpp: the staggered grid of `variational`). Private to
+// solvers/dynamics.
+//
+// A finite-difference Jacobian, Broyden's rank-one updates, reuse across steps (rebuilt when the
+// step constant c of the time rule changes or a Newton step does not halve the residual),
+// backtracking along a fresh Jacobian's step that does not reduce the residual, and a linear
+// predictor from the last two steps' solutions.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <Eigen/LU>
+
+namespace rodlab::solvers::dynamics {
+
+/// Relative finite-difference step of the Jacobian columns (scaled unknowns).
+inline constexpr double kShootingFdStep = 1e-7;
+/// A Newton step that does not reduce the residual by this factor triggers a fresh Jacobian.
+inline constexpr double kShootingSlowRatio = 0.5;
+/// A fresh Jacobian's step that does not reduce the residual is halved up to this many times.
+inline constexpr int kShootingHalvings = 10;
+
+/// Why a shooting solve stopped without converging (empty: it converged).
+struct ShootingOutcome {
+  std::string failure;
+  int shots = 0;  ///< integrations spent, Jacobian columns included
+};
+
+/// Newton's state across steps for one kind of unknown vector.
+template <class Vec, class Mat>
+class ShootingNewton {
+ public:
+  /// The first guess of the first step (also the predictor's history).
+  void start(const Vec& x0) {
+    prev_ = prev2_ = x0;
+    valid_ = false;
+  }
+
+  /// Solves shoot(x) = 0 to |r|_inf <= tol within max_shots integrations. `shoot` maps the
+  /// unknowns to the residual and leaves the profiles of its argument behind, so on success the
+  /// last call was at the solution. `c` keys the Jacobian's reuse; `extrapolate` turns the
+  /// linear predictor on (from the third step: two previous solutions exist).
+  template <class Shoot>
+  ShootingOutcome solve(Shoot&& shoot, double c, bool extrapolate, double tol, int max_shots) {
+    ShootingOutcome out;
+    Vec x = extrapolate ? Vec(2.0 * prev_ - prev2_) : prev_;
+    Vec r = shoot(x);
+    ++out.shots;
+    if (!valid_ || c != c_) {
+      if (!finite_difference_jacobian(shoot, x, r, c, out.shots)) {
+        out.failure = "the Jacobian is not finite";
+        return out;
+      }
+    }
+    bool fresh = false;
+    auto norm = [](const Vec& v) { return v.template lpNorm<Eigen::Infinity>(); };
+    while (!(norm(r) <= tol)) {
+      if (out.shots >= max_shots || !r.allFinite()) {
+        out.failure = "single shooting did not converge (tip residual " + std::to_string(norm(r)) + ")";
+        return out;
+      }
+      const Eigen::PartialPivLU<Mat> lu(J_);
+      const Vec dx = -lu.solve(r);
+      if (!dx.allFinite()) {
+        out.failure = "the shooting Jacobian is singular";
+        return out;
+      }
+      Vec r_new = shoot(Vec(x + dx));
+      ++out.shots;
+      if (!(norm(r_new) <= kShootingSlowRatio * norm(r)) && !fresh) {
+        // Broyden's secant model went stale: rebuild the Jacobian where we stand.
+        if (!finite_difference_jacobian(shoot, x, r, c, out.shots)) {
+          out.failure = "the Jacobian is not finite";
+          return out;
+        }
+        fresh = true;
+        continue;
+      }
+      // Even a fresh Jacobian's step may overshoot where the march amplifies (small dt):
+      // backtrack along it until the residual falls.
+      Vec step = dx;
+      for (int k = 0; k < kShootingHalvings && !(norm(r_new) < norm(r)); ++k) {
+        step *= 0.5;
+        r_new = shoot(Vec(x + step));
+        ++out.shots;
+      }
+      if (!(norm(r_new) < norm(r))) {
+        shoot(x);  // leave the profiles of the best iterate
+        out.failure = "single shooting did not converge (no step along Newton's direction "
+                      "reduces the tip residual " + std::to_string(norm(r)) + ")";
+        return out;
+      }
+      // Broyden's rank-one update of the secant model.
+      J_ += ((r_new - r) - J_ * step) * step.transpose() / step.squaredNorm();
+      x += step;
+      r = r_new;
+      fresh = false;
+    }
+    prev2_ = prev_;
+    prev_ = x;
+    return out;
+  }
+
+ private:
+  template <class Shoot>
+  bool finite_difference_jacobian(Shoot& shoot, const Vec& x, const Vec& r, double c, int& shots) {
+    const auto n = x.size();
+    if (J_.rows() != n) J_.setZero(n, n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const double h = kShootingFdStep * std::max(1.0, std::abs(x[k]));
+      Vec xp = x;
+      xp[k] += h;
+      J_.col(k) = (shoot(xp) - r) / h;
+      ++shots;
+    }
+    shoot(x);  // restore the profiles of x
+    ++shots;
+    valid_ = J_.allFinite();
+    c_ = c;  // the Jacobian depends on the step through c
+    return valid_;
+  }
+
+  Mat J_;
+  bool valid_ = false;
+  double c_ = 0.0;
+  Vec prev_, prev2_;
+};
+
+}  // namespace rodlab::solvers::dynamics

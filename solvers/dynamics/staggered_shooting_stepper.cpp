@@ -1,0 +1,275 @@
+#include "staggered_shooting_stepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/LU>
+
+#include "shooting_newton.hpp"
+
+namespace rodlab::solvers::dynamics {
+namespace {
+
+using lie::Matrix6;
+namespace se3 = lie::se3;
+
+/// The solve of sigma(xi) = dexp^T_{ds xi} lambda for a segment's strain (segment_twist) stops
+/// when its twist ds xi moves by less than this times ds (a few units of rounding of ds nu).
+constexpr double kStrainTol = 4e-15;
+/// Fixed-point iterations at most; Newton takes over if one move is not below kSlowContraction
+/// times the previous one.
+constexpr int kFixedPointIterations = 30;
+constexpr double kSlowContraction = 0.3;
+constexpr int kNewtonIterations = 30;
+
+class StaggeredShootingStepper final : public Stepper {
+ public:
+  StaggeredShootingStepper(const DynamicProblem& problem, const ShootingOptions& options,
+                           const RestState& initial, std::unique_ptr<TimeRule> rule)
+      : P_(problem), opt_(options), rule_(std::move(rule)), n_(options.nodes),
+        ds_(problem.length() / (n_ - 1)), name_(std::string(rule_->name()) + " (grid staggered)") {
+    if (n_ < 3) throw std::invalid_argument(name_ + ": nodes must be >= 3");
+    if (static_cast<int>(initial.g.size()) != n_)
+      throw std::invalid_argument(name_ + ": expected " + std::to_string(n_) +
+                                  " initial nodes, got " + std::to_string(initial.g.size()));
+    if (problem.has_muscles() || problem.unknown_count() > 0)
+      throw std::invalid_argument(
+          name_ + ": muscles, cable displacement control and chamber volume control are not "
+                  "supported on the staggered grid yet; use solver.grid euler, "
+                  "implicit-midpoint-collocation or variational");
+    const Vector6& xs = problem.model().xi_star();
+    g_ = initial.g;
+    xi_.assign(n_ - 1, Vector6::Zero());
+    for (int j = 0; j + 1 < n_; ++j) {
+      Vector6 x = (g_[j].inverse() * g_[j + 1]).log();
+      if (problem.is_kirchhoff()) {
+        // start on the constraint (as `variational` and `ida`): each segment keeps its
+        // rotation and gets nu = nu*
+        x.tail<3>() = ds_ * xs.tail<3>();
+        g_[j + 1] = g_[j] * SE3::exp(x);
+      }
+      xi_[j] = x / ds_;
+    }
+    eta_.assign(n_, Vector6::Zero());
+    eta_u_ = eta_hist_ = eta_;
+    xi_u_ = xi_hist_ = xi_ref_ = xi_;
+    g_u_ = g_;
+    entry_at_.assign(n_, 0);
+    entries_ = problem.entry_nodes(n_);
+    for (const auto& e : entries_) entry_at_[e.node] = 1;
+    actuators_ = problem.has_actuators();
+    const auto& K = problem.model().K_diag();
+    const double EI = std::min(K[0], K[1]), L = problem.length();
+    scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
+    // first guess: the base segment's elastic wrench in the initial state
+    newton_.start(K.cwiseProduct(xi_[0] - xs).cwiseQuotient(scale_));
+  }
+
+  StepStatus step(double t, double dt) override {
+    t_u_ = t + rule_->theta() * dt;
+    dt_ = dt;
+    c_ = rule_->coefficient(dt);
+    rule_->history(RuleField::strain, dt, xi_, xi_hist_);
+    rule_->history(RuleField::velocity, dt, eta_, eta_hist_);
+    const Vector6& V = P_.model().V_diag();
+    Kt_ = P_.model().K_diag() + c_ * V;
+    Kt_matrix_ = Kt_.asDiagonal();
+    if (actuators_) F_ = P_.forces(t_u_);
+    // sigma = K (xi - xi*) + V (c xi + h) + tendons = Kt (xi - xi_ref) + tendons   (3.10)
+    const Vector6 K_xi_star = P_.model().K_diag().cwiseProduct(P_.model().xi_star());
+    for (int j = 0; j + 1 < n_; ++j)
+      xi_ref_[j] = (K_xi_star - V.cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
+    const ShootingOutcome out =
+        newton_.solve([this](const Vector6& x) { return shoot(x); }, c_, steps_ >= 2, opt_.tol,
+                      opt_.max_iterations);
+    if (!out.failure.empty())
+      return StepStatus::failed(name_ + ": " + out.failure + " in the step from t = " +
+                                std::to_string(t) + " s (dt = " + std::to_string(dt) + " s)");
+    if (inner_failed_)
+      return StepStatus::failed(name_ + ": a segment's strain did not converge at the solution "
+                                        "in the step from t = " + std::to_string(t) + " s");
+    // the last shot was at the solution: its profiles and powers are current.
+    const double w0 = rule_->ledger_start_weight(), w1 = 1.0 - w0;
+    ledger_.dissipated += dt * (w0 * dissipated_start_ + w1 * dissipated_u_);
+    ledger_.work_in += dt * (w0 * work_start_ + w1 * work_u_);
+    dissipated_start_ = dissipated_u_;
+    work_start_ = work_u_;
+    rule_->advance(RuleField::strain, dt, xi_u_, xi_hist_, xi_);
+    rule_->advance(RuleField::velocity, dt, eta_u_, eta_hist_, eta_);
+    // poses from the strains: exact on the staggered grid, g_(j+1) = g_j exp(ds xi_j)   (3.38)
+    for (int j = 0; j + 1 < n_; ++j) g_[j + 1] = g_[j] * SE3::exp(ds_ * xi_[j]);
+    ++steps_;
+    StepStatus status;
+    status.iterations = out.shots;
+    return status;
+  }
+
+  Energy energy() const override {
+    Energy e = ledger_;
+    e.kinetic = kinetic_energy(P_.model(), eta_, ds_);
+    e.strain = strain_energy_segments(P_.model(), xi_, ds_);
+    e.gravity = gravity_energy(P_, g_, ds_);
+    return e;
+  }
+
+  Vector3 tip_position() const override { return g_.back().translation(); }
+
+  double max_det_deviation() const override { return dynamics::max_det_deviation(g_); }
+
+  std::vector<result::CenterlineSample> centerline() const override {
+    return staggered_centerline(g_, xi_, ds_);
+  }
+
+ private:
+  /// The march from the base with lambda_0 = x * scale (header); returns the scaled tip
+  /// residual lambda_(N-1) - W_tip, leaves the profiles at t_u and their powers behind.
+  Vector6 shoot(const Vector6& x) {
+    const Vector6& M = P_.model().M_diag();
+    const Vector6& V = P_.model().V_diag();
+    const bool kirchhoff = P_.is_kirchhoff();
+    Vector6 lambda_pre = x.cwiseProduct(scale_);  // node j's balance before its entry load
+    Vector6 eta = Vector6::Zero();
+    SE3 g = P_.base();
+    double dissipated = 0.0, work = 0.0;
+    eta_u_[0].setZero();
+    // warm start from the last shot's strains unless that shot failed somewhere (then from the
+    // state at the start of the step)
+    const std::vector<Vector6>& guess = inner_failed_ ? xi_ : xi_u_;
+    inner_failed_ = false;
+    for (int j = 0; j + 1 < n_; ++j) {
+      const double s_mid = (j + 0.5) * ds_;
+      // segment j: sigma(xi_j) = dexp^T_{ds xi_j} lambda_j, lambda_j = lambda_pre - entry(xi_j)
+      Vector6 lambda;
+      const Vector6 X = segment_twist(j, lambda_pre, ds_ * guess[j], lambda);
+      const Vector6 xi = X / ds_;
+      xi_u_[j] = xi;
+      // its rate and the viscous and actuator power of the segment
+      const Vector6 xi_dot = c_ * xi + xi_hist_[j];
+      Vector6 xk_dot = xi_dot;
+      if (kirchhoff) xk_dot.tail<3>().setZero();
+      dissipated += ds_ * xk_dot.dot(V.cwiseProduct(xk_dot));
+      if (actuators_) work += ds_ * P_.actuator_power(xi, xk_dot, s_mid, F_);
+      if (entry_at_[j]) work += entry_loads(j, xi).dot(eta);  // at node j, with its eta
+      // node j + 1: compatibility, then its balance
+      const SE3 G = SE3::exp(X);
+      eta = G.inverse().Ad_apply(eta) + ds_ * se3::dexp_apply(-X, xi_dot);
+      g = g * G;
+      const int k = j + 1;
+      eta_u_[k] = eta;
+      g_u_[k] = g;
+      const bool tip = k == n_ - 1;
+      const double w = tip ? 0.5 * ds_ : ds_;
+      const SO3& R = g.rotation();
+      const Vector6 applied = P_.applied_load(R, t_u_), drag = P_.drag_load(eta);
+      const Vector6 Meta = M.cwiseProduct(eta);
+      lambda_pre = G.coAd_apply(lambda) +
+                   w * (M.cwiseProduct(c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
+                        P_.gravity_load(R) - applied - drag);                      // (3.41), (3.8)
+      dissipated -= w * drag.dot(eta);
+      work += w * applied.dot(eta);
+      if (tip && entry_at_[k]) {
+        // a cable entering at the tip: its load uses the last segment's strain (inside, the
+        // segment that starts at the node, solved with it above), as the semi-discrete rod does
+        const Vector6 entry = entry_loads(k, xi);
+        work += entry.dot(eta);
+        lambda_pre -= entry;
+      }
+    }
+    const Vector6 W = P_.tip_load(g.rotation(), t_u_);
+    work += W.dot(eta);
+    dissipated_u_ = dissipated;
+    work_u_ = work;
+    return (lambda_pre - W).cwiseQuotient(scale_);
+  }
+
+  /// Segment j's twist X = ds xi_j from the wrench lambda_pre of its first node before the entry
+  /// loads there: the fixed point X = Phi(X) = ds solve_strain(dexp^T_X (lambda_pre -
+  /// entry(X / ds))) (Kt, xi_ref, tendons and Kirchhoff's nu = nu* inside solve_strain), from
+  /// the guess X0. The iteration contracts with ratio ~ ds |lambda| / (2 E I); where it does not
+  /// (far from the solution, in early Newton iterates of the shooting), Newton with a
+  /// finite-difference Jacobian of Phi takes over. A failure leaves inner_failed_ set.
+  Vector6 segment_twist(int j, const Vector6& lambda_pre, const Vector6& X0, Vector6& lambda) {
+    const double s_mid = (j + 0.5) * ds_;
+    auto phi = [&](const Vector6& X, Vector6& lam) {
+      lam = entry_at_[j] ? Vector6(lambda_pre - entry_loads(j, X / ds_)) : lambda_pre;
+      const Vector6 sigma = se3::dexp_transpose_apply(X, lam);
+      return Vector6(ds_ * (actuators_ ? P_.solve_strain(Kt_matrix_, xi_ref_[j], sigma, s_mid, F_)
+                                       : P_.solve_strain(Kt_, xi_ref_[j], sigma, s_mid, t_u_)));
+    };
+    const double tol = kStrainTol * ds_;
+    Vector6 X = X0;
+    double previous = std::numeric_limits<double>::infinity();
+    for (int it = 0; it < kFixedPointIterations; ++it) {
+      const Vector6 next = phi(X, lambda);
+      const double move = (next - X).lpNorm<Eigen::Infinity>();
+      X = next;
+      if (move <= tol) return X;
+      if (!(move <= kSlowContraction * previous) && it >= 2) break;
+      previous = move;
+    }
+    Vector6 lam_unused;
+    for (int it = 0; it < kNewtonIterations; ++it) {
+      const Vector6 r = X - phi(X, lambda);
+      Matrix6 J;
+      const double h = 1e-7 * std::max(ds_, X.lpNorm<Eigen::Infinity>());
+      for (int k = 0; k < 6; ++k) {
+        Vector6 Xp = X;
+        Xp[k] += h;
+        J.col(k) = ((Xp - phi(Xp, lam_unused)) - r) / h;
+      }
+      const Vector6 dX = -J.partialPivLu().solve(r);
+      X += dX;
+      if (!X.allFinite()) break;
+      if (dX.lpNorm<Eigen::Infinity>() <= tol) {
+        X = phi(X, lambda);
+        return X;
+      }
+    }
+    inner_failed_ = true;
+    return X.allFinite() ? X : Vector6::Constant(std::nan(""));
+  }
+
+  /// The loads of the cables that enter at node k, with the strain xi of its segment.
+  Vector6 entry_loads(int k, const Vector6& xi) const {
+    Vector6 sum = Vector6::Zero();
+    for (const auto& e : entries_)
+      if (e.node == k) sum += actuators_ ? P_.entry_load(e.s, xi, F_) : P_.entry_load(e.s, xi, t_u_);
+    return sum;
+  }
+
+  const DynamicProblem& P_;
+  ShootingOptions opt_;
+  std::unique_ptr<TimeRule> rule_;
+  int n_;
+  double ds_;
+  std::string name_;
+  Vector6 scale_, Kt_;
+  Matrix6 Kt_matrix_;
+  double t_u_ = 0.0, dt_ = 0.0, c_ = 0.0;
+  double dissipated_start_ = 0.0, work_start_ = 0.0, dissipated_u_ = 0.0, work_u_ = 0.0;
+  std::vector<Vector6> xi_, eta_, xi_u_, eta_u_, xi_hist_, eta_hist_, xi_ref_;
+  std::vector<SE3> g_, g_u_;
+  std::vector<DynamicProblem::EntryNode> entries_;
+  std::vector<char> entry_at_;
+  bool actuators_ = false;
+  bool inner_failed_ = false;  ///< a segment's strain did not converge in the last shot
+  DynamicProblem::Forces F_{};
+  ShootingNewton<Vector6, Matrix6> newton_;
+  long steps_ = 0;
+  Energy ledger_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_staggered_shooting_stepper(const DynamicProblem& problem,
+                                                         const ShootingOptions& options,
+                                                         const RestState& initial,
+                                                         std::unique_ptr<TimeRule> rule) {
+  return std::make_unique<StaggeredShootingStepper>(problem, options, initial, std::move(rule));
+}
+
+}  // namespace rodlab::solvers::dynamics
