@@ -159,16 +159,17 @@ class IdaReference final : public Stepper {
         io);
     breaks_ = rod_.stabilised_breakpoints();
     Vector y0 = rod_.stabilised_from_rest(rod_.rest_state(g0));
-    restart(0.0, y0);
+    restart(0.0, y0, 0.0);
   }
 
   /// (Re)starts IDA at t from y: a consistent state on the piece of the length schedules that
-  /// starts at t (poses and velocities projected, forces from the acceleration level).
+  /// starts at `piece` (the breakpoint itself, not t + dt rounded below it; poses and velocities
+  /// projected, forces from the acceleration level).
   /// The energy that the projections change (the velocity jump of an impulse: only the
   /// impulsive actuator forces work during it, so their work is the change of T + U + P) is
   /// booked as work_in: the ledger stays closed across the restart.
-  void restart(double t, Vector y) {
-    piece_ = t;
+  void restart(double t, Vector y, double piece) {
+    piece_ = piece;
     Vector yp;
     const int n = rod_.node_size();
     rod_.set_state(y.head(n));
@@ -187,19 +188,19 @@ class IdaReference final : public Stepper {
     const double tol = 1e-12 * std::max(1.0, std::abs(t + dt));
     StepStatus total;
     try {
-      if (std::abs(t - ida_->time()) > tol) restart(t, Vector(ida_->y()));
+      if (std::abs(t - ida_->time()) > tol) restart(t, Vector(ida_->y()), t);
       for (const double b : breaks_) {
         if (b <= ida_->time() + tol || b >= t + dt - tol) continue;
         StepStatus s = advance(b);
         total.iterations += s.iterations;
         if (!s.ok) return s;
-        restart(b, Vector(ida_->y()));
+        restart(b, Vector(ida_->y()), b);
       }
       StepStatus s = advance(t + dt);
       s.iterations += total.iterations;
       if (!s.ok) return s;
       for (const double b : breaks_)
-        if (std::abs(b - (t + dt)) <= tol) restart(t + dt, Vector(ida_->y()));
+        if (std::abs(b - (t + dt)) <= tol) restart(ida_->time(), Vector(ida_->y()), b);
       return s;
     } catch (const std::runtime_error& e) {
       return StepStatus::failed(std::string("ida: ") + e.what());
