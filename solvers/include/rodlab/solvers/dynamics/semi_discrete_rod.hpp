@@ -35,8 +35,8 @@
 // with positions absolute (1 m): ida's absolute tolerances are atol * tolerance_scale(), and the
 // collocation scheme scales its residual and unknowns by it.
 //
-// Kirchhoff rods (nu = nu*) only with `constrained` (the collocation scheme; `ida` rejects them:
-// the constraint makes the system an index-3 DAE). Segment k then carries an unknown constraint
+// Kirchhoff rods (nu = nu*) only with `constrained` (the collocation scheme; `ida` through the
+// stabilised index-2 form below: the constraint makes the plain system an index-3 DAE). Segment k then carries an unknown constraint
 // force f_k (3 per segment, world-free: the force part of the segment's stress) that the caller
 // supplies: sigma_k = [m-part of (3.10) at nu = nu*, nu_dot = 0; 0] + [0; f_k] (the rod's own
 // force part K_nu (nu - nu*) + V_nu nu_dot is dropped, actuators act as usual), so node k gets
@@ -50,7 +50,8 @@
 // "Muscles and length control") add one unknown x_e each, which the caller carries next to y:
 // a muscle's length Delta [m] (its force is the law's, F = law(q(t), Delta, Delta*)), or a
 // length-controlled actuator's force F [N] (cable displacement, chamber volume; only with
-// `constrained`: `ida` rejects them, the prescribed length makes the system an index-3 DAE). Their
+// `constrained`: the prescribed length makes the plain system an index-3 DAE; `ida` uses the
+// stabilised index-2 form below). Their
 // rows (actuator_rows()):
 //   muscle   (x_e - L_e(y_f)) / L      algebraic, at the state where f is evaluated
 //   length   (L_e(y_c) - L_target(t_c)) / L     at the constraint state (collocation: the end
