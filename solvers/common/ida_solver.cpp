@@ -88,7 +88,8 @@ struct IdaSolver::Impl {
   // Declaration order is destruction order reversed: the context outlives everything, the IDA
   // memory (which refers to the vectors, matrix and linear solver) goes first.
   sundials::ContextPtr context;
-  sundials::VectorPtr y, yp, atol;
+  sundials::VectorPtr y, yp, atol, id;
+  bool suppress_algebraic = false;
   sundials::MatrixPtr A;
   sundials::LinearSolverPtr linear_solver;
   sundials::MemoryPtr<IDAFree> memory;
@@ -199,6 +200,17 @@ IdaSolver::IdaSolver(const SparseMatrix& pattern, Residual residual, Jacobian ja
   view(d.y.get()).setZero();
   view(d.yp.get()).setZero();
   view(d.atol.get()) = options.atol;
+  if (options.id.size() != 0) {
+    if (options.id.size() != n)
+      throw std::invalid_argument("IdaSolver: id: expected size " + std::to_string(n) + ", got " +
+                                  std::to_string(options.id.size()));
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (options.id[i] != 0.0 && options.id[i] != 1.0)
+        throw std::invalid_argument("IdaSolver: id entries must be 0 (algebraic) or 1");
+    d.id = sundials::make_vector(size, ctx, "IDA");
+    view(d.id.get()) = options.id;
+  }
+  d.suppress_algebraic = options.suppress_algebraic;
   d.A = d.pattern.make_matrix(ctx);
   d.linear_solver.reset(
       sundials::check_created(SUNLinSol_KLU(d.y.get(), d.A.get(), ctx), "IDA", "SUNLinSol_KLU"));
@@ -238,6 +250,11 @@ void IdaSolver::initialize(double t0, const Vector& y0, const Vector& yp0) {
     check_ida(IDASVtolerances(mem, d.rtol, d.atol.get()), "IDASVtolerances");
     check_idals(IDASetLinearSolver(mem, d.linear_solver.get(), d.A.get()), "IDASetLinearSolver");
     check_idals(IDASetJacFn(mem, &Impl::jacobian_callback), "IDASetJacFn");
+    if (d.id) {
+      check_ida(IDASetId(mem, d.id.get()), "IDASetId");
+      check_ida(IDASetSuppressAlg(mem, d.suppress_algebraic ? SUNTRUE : SUNFALSE),
+                "IDASetSuppressAlg");
+    }
     d.initialized = true;
   } else {
     check_ida(IDAReInit(mem, t0, d.y.get(), d.yp.get()), "IDAReInit");

@@ -18,13 +18,17 @@ using ConstRef = Eigen::Ref<const Vector>;
 class IdaReference final : public Stepper {
  public:
   IdaReference(const DynamicProblem& problem, const IdaOptions& options, std::span<const SE3> g0)
-      : rod_(problem, options.nodes, "ida") {
+      : rod_(problem, options.nodes, "ida", true) {
     if (static_cast<int>(g0.size()) != rod_.nodes())
       throw std::invalid_argument("ida: expected " + std::to_string(rod_.nodes()) +
                                   " initial poses, got " + std::to_string(g0.size()));
     if (!(options.rtol > 0.0) || !(options.atol > 0.0))
       throw std::invalid_argument("ida: rtol and atol must be > 0");
     if (options.max_steps < 1) throw std::invalid_argument("ida: max_steps must be >= 1");
+    if (rod_.has_position_constraints()) {
+      init_stabilised(options, g0);
+      return;
+    }
     dim_ = rod_.size();
     iD_ = rod_.dissipated_index();
     iW_ = rod_.work_index();
@@ -58,6 +62,7 @@ class IdaReference final : public Stepper {
 
   StepStatus step(double t, double dt) override {
     if (!(dt > 0.0) || !std::isfinite(t + dt)) return StepStatus::failed("ida: dt must be > 0");
+    if (stabilised_) return stabilised_step(t, dt);
     if (std::abs(t - ida_->time()) > 1e-12 * std::max(1.0, std::abs(t))) {
       // Not where IDA stands: restart there from the current state (an ODE: y' = f(t, y)).
       const Vector y = ida_->y();
@@ -65,8 +70,13 @@ class IdaReference final : public Stepper {
       rod_.rhs(t, y, yp);
       ida_->initialize(t, y, yp);
     }
-    const IdaStats s = ida_->advance(t + dt);
-    rod_.set_state(ida_->y());
+    return advance(t + dt);
+  }
+
+  /// IDASolve to tout; the state is unpacked for the reports.
+  StepStatus advance(double tout) {
+    const IdaStats s = ida_->advance(tout);
+    rod_.set_state(ida_->y().head(rod_.node_size()));
     if (!s.ok) {
       StepStatus failed = StepStatus::failed("ida: IDASolve failed with " + s.flag_name +
                                              " at t = " + std::to_string(s.t) + " s" +
@@ -95,6 +105,20 @@ class IdaReference final : public Stepper {
     std::vector<ActuatorReading> out(m);
     if (m == 0) return out;
     const auto y = ida_->y();
+    if (stabilised_) {
+      // lengths on the grid, forces of an evaluation at the current state
+      const int n = rod_.node_size(), iX = rod_.stabilised_unknown_index();
+      Vector lengths(m), f(n);
+      rod_.path_lengths(y.head(n), lengths);
+      rod_.rhs(ida_->time(), y.head(n), y.segment(rod_.stabilised_force_index(),
+                                                   rod_.constraint_size()),
+               y.segment(iX, m), f);
+      const auto& which = rod_.problem().unknown_actuators();
+      for (int e = 0; e < m; ++e)
+        out[e] = {which[e], rod_.unknown_is_length(e) ? y[iX + e] : lengths[e],
+                  rod_.last_forces()[which[e]]};
+      return out;
+    }
     Vector r(rod_.size());
     rod_.rhs(ida_->time(), y, r);  // the forces at the current state
     const auto& which = rod_.problem().unknown_actuators();
@@ -104,9 +128,91 @@ class IdaReference final : public Stepper {
   }
 
  private:
+  // --- Kirchhoff rods and length control: the stabilised index-2 form --------------------------
+  // (semi_discrete_rod.hpp; docs/dynamics.md "ida: Kirchhoff rods and length control").
+  void init_stabilised(const IdaOptions& options, std::span<const SE3> g0) {
+    stabilised_ = true;
+    dim_ = rod_.stabilised_size();
+    iD_ = rod_.dissipated_index();
+    iW_ = rod_.work_index();
+    IdaSolverOptions io;
+    io.rtol = options.rtol;
+    io.max_steps = options.max_steps;
+    io.id = rod_.stabilised_id();
+    // Algebraic components (constraint and actuator forces, multipliers): their Newton corrections
+    // carry the rounding of the constraint rows amplified by 1/h (mu) and 1/h^2 (f) at IDA's small
+    // steps, which fails IDA's convergence test on the whole vector as h -> 0 (measured: at t = 0
+    // down to h = 5e-17). Their tolerance is their characteristic scale itself; they are
+    // converged through the differential components they drive (a force error df moves eta by
+    // h M^-1 C^T df, which the test on eta sees).
+    io.atol = rod_.stabilised_tolerance_scale();
+    for (Eigen::Index i = 0; i < io.atol.size(); ++i)
+      if (io.id[i] != 0.0) io.atol[i] *= options.atol;
+    io.suppress_algebraic = true;  // f, F and mu are index-2 variables: no local error test
+    ida_ = std::make_unique<IdaSolver>(
+        rod_.stabilised_pattern(),
+        [this](double t, const ConstRef& y, const ConstRef& yp, Eigen::Ref<Vector> r) {
+          rod_.stabilised_residual(t, piece_, y, yp, r);
+        },
+        [this](double t, double cj, const ConstRef& y, const ConstRef&, const ConstRef&,
+               IdaSolver::SparseMatrix& J) { rod_.stabilised_newton_matrix(t, piece_, y, cj, J); },
+        io);
+    breaks_ = rod_.stabilised_breakpoints();
+    Vector y0 = rod_.stabilised_from_rest(rod_.rest_state(g0));
+    restart(0.0, y0, 0.0);
+  }
+
+  /// (Re)starts IDA at t from y: a consistent state on the piece of the length schedules that
+  /// starts at `piece` (the breakpoint itself, not t + dt rounded below it; poses and velocities
+  /// projected, forces from the acceleration level).
+  /// The energy that the projections change (the velocity jump of an impulse: only the
+  /// impulsive actuator forces work during it, so their work is the change of T + U + P) is
+  /// booked as work_in: the ledger stays closed across the restart.
+  void restart(double t, Vector y, double piece) {
+    piece_ = piece;
+    Vector yp;
+    const int n = rod_.node_size();
+    rod_.set_state(y.head(n));
+    const double before = rod_.energy(0.0, 0.0).total();
+    rod_.stabilised_consistent_state(t, piece_, y, yp);
+    rod_.set_state(y.head(n));
+    y[iW_] += rod_.energy(0.0, 0.0).total() - before;
+    ida_->initialize(t, y, yp);
+    rod_.set_state(y.head(rod_.node_size()));
+  }
+
+  /// One step, stopping at every kink or jump of a length schedule inside it and restarting
+  /// there: a kink of a prescribed length is an impulse (a jump of the velocities), which the
+  /// restart's velocity projection applies.
+  StepStatus stabilised_step(double t, double dt) {
+    const double tol = 1e-12 * std::max(1.0, std::abs(t + dt));
+    StepStatus total;
+    try {
+      if (std::abs(t - ida_->time()) > tol) restart(t, Vector(ida_->y()), t);
+      for (const double b : breaks_) {
+        if (b <= ida_->time() + tol || b >= t + dt - tol) continue;
+        StepStatus s = advance(b);
+        total.iterations += s.iterations;
+        if (!s.ok) return s;
+        restart(b, Vector(ida_->y()), b);
+      }
+      StepStatus s = advance(t + dt);
+      s.iterations += total.iterations;
+      if (!s.ok) return s;
+      for (const double b : breaks_)
+        if (std::abs(b - (t + dt)) <= tol) restart(ida_->time(), Vector(ida_->y()), b);
+      return s;
+    } catch (const std::runtime_error& e) {
+      return StepStatus::failed(std::string("ida: ") + e.what());
+    }
+  }
+
   SemiDiscreteRod rod_;
   int dim_ = 0, iD_ = 0, iW_ = 0;
   std::unique_ptr<IdaSolver> ida_;
+  bool stabilised_ = false;
+  double piece_ = 0.0;          ///< start of the current piece of the length schedules
+  std::vector<double> breaks_;  ///< their kinks and jumps
 };
 
 }  // namespace

@@ -11,7 +11,7 @@
 //   (b) under laminar drag the rod settles to the statics of the same scene (rkmk-rk4,
 //       N = 401; the tension an unknown of the BVP) at the scheme's spatial order;
 //   (c) the ledger closes: the actuator's work -F dL/dt is in work_in;
-//   (d) `ida` rejects length control (an index-3 DAE) naming the schemes that support it.
+// `ida` with length control (the stabilised index-2 form): test_ida_constraints.cpp.
 // Measured numbers: in each case's comment and the messages (--log_level=message).
 
 #include <algorithm>
@@ -271,22 +271,5 @@ BOOST_AUTO_TEST_CASE(ledger_closes_with_a_displacement_schedule) {
                        << " J = " << drift / work << " of it, wall " << r.wall << " s");
     BOOST_TEST(work > 1e-5);
     BOOST_TEST(drift <= 0.01 * work);
-  }
-}
-
-BOOST_AUTO_TEST_CASE(ida_rejects_length_control) {
-  // Reference: the interface rule for unsupported input (std::invalid_argument: exit 2 from the
-  // command line) with a message that says why and what to use instead.
-  for (const std::string& a : {cable("0.001"), chamber("1.0e-6")}) {
-    const auto P = DynamicProblem::from_scene(actuated_scene("{}", a));
-    try {
-      make_scheme("ida", P, 11, straight(P, 11));
-      BOOST_ERROR("ida accepted length control");
-    } catch (const std::invalid_argument& e) {
-      const std::string what = e.what();
-      BOOST_TEST_MESSAGE(what);
-      BOOST_TEST(what.find("index-3") != std::string::npos);
-      BOOST_TEST(what.find("implicit-midpoint-collocation") != std::string::npos);
-    }
   }
 }

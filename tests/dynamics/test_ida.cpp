@@ -212,8 +212,7 @@ BOOST_AUTO_TEST_CASE(restart_off_the_current_time) {
 }
 
 BOOST_AUTO_TEST_CASE(failures_are_reported) {
-  // Too few internal steps: a failed StepStatus naming IDA's flag, not an exception. Kirchhoff
-  // rods are rejected.
+  // Too few internal steps: a failed StepStatus naming IDA's flag, not an exception.
   const auto P = DynamicProblem::from_scene(cantilever(0.0));
   IdaOptions few{kNodes};
   few.max_steps = 10;
@@ -221,17 +220,4 @@ BOOST_AUTO_TEST_CASE(failures_are_reported) {
   const auto status = ida->step(0.0, 0.1);
   BOOST_TEST(!status.ok);
   BOOST_TEST(status.reason.find("IDA_TOO_MUCH_WORK") != std::string::npos, status.reason);
-
-  const auto K = DynamicProblem::from_scene(io::load_scene_from_string(R"(schema: rodlab.scene/1
-rod:
-  length: 0.1
-  model: kirchhoff
-  section: {shape: circle, diameter: 0.01}
-  material: {E: 1.0e6, G: 0.33e6, rho: 1000}
-tip:
-  free: {}
-)",
-                                                                       "kirchhoff.yaml"));
-  BOOST_CHECK_THROW(solvers::dynamics::make_ida(K, IdaOptions{kNodes}, straight(K, kNodes)),
-                    std::invalid_argument);
 }

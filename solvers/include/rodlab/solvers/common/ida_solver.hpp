@@ -44,6 +44,11 @@ struct IdaSolverOptions {
   int max_order = 5;          ///< BDF order bound 1..5 (IDASetMaxOrd)
   double max_step = 0.0;      ///< bound on |h|; 0: none (IDASetMaxStep)
   double initial_step = 0.0;  ///< first step; 0: IDA's estimate (IDASetInitStep)
+  /// Differential (1) or algebraic (0) per component (IDASetId); empty: all differential.
+  Eigen::VectorXd id;
+  /// Leave the algebraic components (id 0) out of the local error test (IDASetSuppressAlg):
+  /// the usual setting for index-2 systems, whose multipliers are not smooth enough for it.
+  bool suppress_algebraic = false;
 };
 
 struct IdaStats {

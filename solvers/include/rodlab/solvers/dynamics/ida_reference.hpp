@@ -34,7 +34,10 @@
 // (Delta - L(y)) / L (index 1; initial values the lengths of the initial poses; their Jacobian
 // row is dense over the poses and their column dense over the velocities, so the Newton matrix
 // stays sparse). Kirchhoff rods and length control (cable displacement, chamber volume: index
-// 3) are not supported (std::invalid_argument naming the schemes that support them).
+// 3 as they stand) are integrated in the stabilised index-2 (Gear-Gupta-Leimkuhler) form of
+// semi_discrete_rod.hpp: constraint and actuator forces and multipliers as algebraic unknowns
+// (IDASetId, IDASetSuppressAlg), consistent initial values by projection, and a restart at every
+// kink of a length schedule (docs/dynamics.md "`ida`: Kirchhoff rods and length control").
 #include <memory>
 #include <span>
 

@@ -35,8 +35,8 @@
 // with positions absolute (1 m): ida's absolute tolerances are atol * tolerance_scale(), and the
 // collocation scheme scales its residual and unknowns by it.
 //
-// Kirchhoff rods (nu = nu*) only with `constrained` (the collocation scheme; `ida` rejects them:
-// the constraint makes the system an index-3 DAE). Segment k then carries an unknown constraint
+// Kirchhoff rods (nu = nu*) only with `constrained` (the collocation scheme; `ida` through the
+// stabilised index-2 form below: the constraint makes the plain system an index-3 DAE). Segment k then carries an unknown constraint
 // force f_k (3 per segment, world-free: the force part of the segment's stress) that the caller
 // supplies: sigma_k = [m-part of (3.10) at nu = nu*, nu_dot = 0; 0] + [0; f_k] (the rod's own
 // force part K_nu (nu - nu*) + V_nu nu_dot is dropped, actuators act as usual), so node k gets
@@ -50,7 +50,8 @@
 // "Muscles and length control") add one unknown x_e each, which the caller carries next to y:
 // a muscle's length Delta [m] (its force is the law's, F = law(q(t), Delta, Delta*)), or a
 // length-controlled actuator's force F [N] (cable displacement, chamber volume; only with
-// `constrained`: `ida` rejects them, the prescribed length makes the system an index-3 DAE). Their
+// `constrained`: the prescribed length makes the plain system an index-3 DAE; `ida` uses the
+// stabilised index-2 form below). Their
 // rows (actuator_rows()):
 //   muscle   (x_e - L_e(y_f)) / L      algebraic, at the state where f is evaluated
 //   length   (L_e(y_c) - L_target(t_c)) / L     at the constraint state (collocation: the end
@@ -179,6 +180,55 @@ class SemiDiscreteRod {
                                  const ConstRef& x, double a, double b, const ConstRef& y_c,
                                  double cy, SparseMatrix& J) const;
 
+  // --- the stabilised index-2 form (ida with Kirchhoff rods or length control) ---------------
+  // Gear-Gupta-Leimkuhler (docs/dynamics.md "ida: Kirchhoff rods and length control";
+  // semi_discrete_rod_stabilised.cpp). Unknowns, in this order (stabilised_size() in all):
+  //   [nodes; D; W; f (constraint_size()); x (unknown_size()); mu (constraint_size());
+  //    mu_x (one per length-controlled unknown)],
+  // f, x and the multipliers mu, mu_x algebraic. Rows:
+  //   nodes, D, W  y' - f(t, y; f, x) - K (mu, mu_x)   K: the pose rates of the velocity
+  //                W C^T (mu, mu_x), C the constraint gradient, W = (M w_j)^-1 per node
+  //   at f         c_k(y) = nu_k - nu*                           position level, Kirchhoff
+  //   at x         muscles (x - L(y)) / L; length (L(y) - L_target(t)) / L    position level
+  //   at mu        [xi_dot_k]_nu / omega_1 = (C eta)_k / omega_1   velocity level, Kirchhoff
+  //   at mu_x      (dL/dt - L_target'(t)) / (L omega_1)           velocity level, length
+  // The targets are the linear piece of their (piecewise linear) schedule that starts at
+  // t_piece: L_target(t_piece) + L_target'(t_piece) (t - t_piece), so that the rows stay smooth up
+  // to the end of the piece (a kink is a restart: stabilised_consistent_state()).
+  /// Kirchhoff rod or length control (position-level constraints).
+  bool has_position_constraints() const { return kirchhoff_ || length_control_; }
+  int stabilised_size() const;
+  int stabilised_force_index() const;       ///< f
+  int stabilised_unknown_index() const;     ///< x
+  int stabilised_multiplier_index() const;  ///< mu, then mu_x
+  /// 1 for the differential components (nodes, D, W), 0 for the algebraic ones (IDASetId).
+  Vector stabilised_id() const;
+  /// tolerance_scale() extended: f and F by force_scale(), muscle lengths by L, multipliers by
+  /// force_scale() / omega_1 (an impulse).
+  Vector stabilised_tolerance_scale() const;
+  /// The stabilised layout of a rest_state() vector (forces and multipliers 0).
+  Vector stabilised_from_rest(const ConstRef& rest) const;
+  /// IDA's residual (above).
+  void stabilised_residual(double t, double t_piece, const ConstRef& y, const ConstRef& yp,
+                           Eigen::Ref<Vector> r) const;
+  /// The pattern of IDA's Newton matrix dF/dy + cj dF/dy' for this residual.
+  SparseMatrix stabilised_pattern() const;
+  /// Fills it: the constrained finite differences of constrained_newton_matrix() for the node,
+  /// ledger, position-constraint and actuator rows; the velocity rows by node colours; the
+  /// multiplier columns exactly (K is linear in mu).
+  void stabilised_newton_matrix(double t, double t_piece, const ConstRef& y, double cj,
+                                SparseMatrix& J) const;
+  /// Consistent (y, yp) at t from the poses, velocities, D and W of y: poses projected onto the
+  /// position constraints when they are off by more than rounding (g_j <- g_j exp(K_j nu), Newton);
+  /// velocities projected onto the velocity constraints (eta <- eta + K lambda: the impulse that
+  /// a kink of a prescribed length gives); f and the length-controlled forces from the
+  /// acceleration-level constraints d/dt (C eta) = 0 (affine in them: Newton with a dense
+  /// finite-difference Jacobian, 3 (N - 1) + m columns); muscle lengths L(y); mu = 0; yp the
+  /// rates. Throws std::runtime_error when a projection does not converge.
+  void stabilised_consistent_state(double t, double t_piece, Vector& y, Vector& yp) const;
+  /// The times where a length-controlled actuator's schedule has a kink or a jump (restarts).
+  std::vector<double> stabilised_breakpoints() const;
+
   /// Poses, velocities and strains of y for the reports below (y: size() or node_size()).
   void set_state(const ConstRef& y) const;
   /// Energies of the state last set; dissipated and work_in as given.
@@ -207,6 +257,20 @@ class SemiDiscreteRod {
   void constraint(const double* y, double* c) const;
   /// Per-segment path-length terms of the unknowns at y into seg (m x (N - 1)); returns nothing.
   void segment_lengths(const double* y, std::vector<double>& seg) const;
+  // The stabilised form (semi_discrete_rod_stabilised.cpp).
+  int length_count() const;
+  double piece_target(int e, double t, double t_piece) const;
+  /// Adds K (mu, mu_x) to the pose rates f (node rows) at the poses of the last evaluate().
+  void add_pose_correction(const double* mu, const double* mu_x, double* f) const;
+  /// The node velocities K (mu, mu_x) into out (6 per node j >= 1), same poses.
+  void pose_correction(const double* mu, const double* mu_x, std::vector<Vector6>& out) const;
+  /// The velocity rows of the last evaluate() into kin (constraint_size()) and len (length_count()).
+  void velocity_rows(double t_piece, double* kin, double* len) const;
+  /// The per-segment terms of the length rates of the last evaluate() (length_count() x (N - 1)).
+  void segment_rates(std::vector<double>& seg) const;
+  mutable std::vector<Vector6> corr_lambda_, corr_moved_, corr_node_;
+  mutable SparseMatrix stab_base_;
+
   /// A segment's strain as the stresses see it (Kirchhoff: nu = nu*).
   Vector6 model_strain(const Vector6& xi) const {
     if (!kirchhoff_) return xi;
