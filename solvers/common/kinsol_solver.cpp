@@ -6,6 +6,7 @@
 
 #include <kinsol/kinsol.h>
 
+#include "kept_klu_solver.hpp"
 #include "sundials_support.hpp"
 
 namespace rodlab::solvers {
@@ -120,7 +121,8 @@ struct KinsolSolver::Impl {
   }
 };
 
-KinsolSolver::KinsolSolver(const SparseMatrix& pattern) : impl_(std::make_unique<Impl>(pattern)) {
+KinsolSolver::KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation)
+    : impl_(std::make_unique<Impl>(pattern)) {
   Impl& d = *impl_;
   const int n = d.pattern.size();
   d.context = sundials::make_context("KINSOL");
@@ -130,7 +132,11 @@ KinsolSolver::KinsolSolver(const SparseMatrix& pattern) : impl_(std::make_unique
   d.f_scale = sundials::make_vector(n, ctx, "KINSOL");
   d.A = d.pattern.make_matrix(ctx);
   d.linear_solver.reset(
-      sundials::check_created(SUNLinSol_KLU(d.u.get(), d.A.get(), ctx), "KINSOL", "SUNLinSol_KLU"));
+      keep_factorisation
+          ? sundials::check_created(sundials::make_kept_klu_solver(n, ctx), "KINSOL",
+                                    "make_kept_klu_solver")
+          : sundials::check_created(SUNLinSol_KLU(d.u.get(), d.A.get(), ctx), "KINSOL",
+                                    "SUNLinSol_KLU"));
 }
 
 KinsolSolver::~KinsolSolver() = default;

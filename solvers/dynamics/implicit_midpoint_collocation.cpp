@@ -33,7 +33,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
                               const ImplicitMidpointCollocationOptions& options,
                               std::span<const SE3> g0)
       : rod_(problem, options.nodes, "implicit-midpoint-collocation", true),
-        kinsol_(constrained() ? rod_.constrained_pattern() : rod_.pattern(false)) {
+        kinsol_(constrained() ? rod_.constrained_pattern() : rod_.pattern(false),
+                /*keep_factorisation=*/true) {
     if (!(options.tol > 0.0))
       throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");
     if (options.max_iterations < 1 || options.max_setup_calls < 1 || options.jacobian_max_age < 1)

@@ -76,7 +76,13 @@ class KinsolSolver {
   /// A solver for square systems whose Jacobian has the structural non-zeros of `pattern`
   /// (values are ignored). Throws std::invalid_argument for a non-square or empty pattern and
   /// std::runtime_error when SUNDIALS cannot create its objects.
-  explicit KinsolSolver(const SparseMatrix& pattern);
+  /// `keep_factorisation` (for callers that solve many nearby systems, e.g. once per time
+  /// step): KLU analyses the pattern once, keeps its factors across solve() calls, refactors
+  /// numerically on the kept pivot order (a fresh factorisation when that looks
+  /// ill-conditioned), and does not factorise a Jacobian whose values equal the last
+  /// factorised one (kept_klu_solver.hpp). Without it, SUNDIALS' SUNLinSol_KLU, which
+  /// analyses and factorises afresh at the start of every solve().
+  explicit KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation = false);
   ~KinsolSolver();
   KinsolSolver(const KinsolSolver&) = delete;
   KinsolSolver& operator=(const KinsolSolver&) = delete;
