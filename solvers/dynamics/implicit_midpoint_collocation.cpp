@@ -95,10 +95,14 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
       const bool reuse = jacobian_calls_ == 0 && cache_valid_;
       ++jacobian_calls_;
       if (reuse) {
-        // dF/dz = a I - df/dy: the stored one with the diagonal moved to this step's a.
+        // dF/dz = a I - df/dy: the stored one with the diagonal moved to this step's a (and
+        // stored so: the cache is always the matrix factorised last).
         std::copy(cached_.data(), cached_.data() + cached_.size(), J.valuePtr());
-        if (a_ != cached_a_)
+        if (a_ != cached_a_) {
           for (int i = 0; i < n_; ++i) J.coeffRef(i, i) += a_ - cached_a_;
+          std::copy(J.valuePtr(), J.valuePtr() + cached_.size(), cached_.data());
+          cached_a_ = a_;
+        }
         return;
       }
       ym_ = y_.head(n_) + z.head(n_);
@@ -158,6 +162,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     z_.segment(n_, nc_) = forces_;
     z_.tail(m_) = x_;
     double best = residual_norm(z_);
+    // F(0) = -f(h, y0) on the node rows: the explicit rate, without another evaluation.
+    f_.head(n_) = -F_.head(n_);
     z0_ = z_;
     trial_.segment(n_, nc_) = forces_;
     trial_.tail(m_) = x_;
@@ -168,7 +174,6 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     };
     if (history_ >= 2) consider((0.5 * dt) * (k1_ + ((dt + dt1_) / (dt1_ + dt2_)) * (k1_ - k2_)));
     if (history_ >= 1) consider((0.5 * dt) * k1_);
-    rate(y_, forces_, x_);
     consider((0.5 * dt) * f_.head(n_));
     z_ = z0_;
     ko_.u_scale.head(n_) = w_.cwiseInverse() * a_;
@@ -176,6 +181,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
 
     if (cache_valid_ && ++age_ > max_age_) cache_valid_ = false;
     ko_.max_setup_calls = max_setup_calls_;
+    // A kept Jacobian of this a is the matrix KLU factorised last: start from its factors.
+    ko_.reuse_factorisation = cache_valid_ && cached_a_ == a_;
     KinsolStats s = solve();
     long iterations = s.nonlinear_iterations;
     // Fallbacks (large steps): exact Newton with full steps (a fresh Jacobian every
@@ -190,6 +197,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
         z_.tail(m_) = x_;
       }
       cache_valid_ = false;
+      ko_.reuse_factorisation = false;
       ko_.max_setup_calls = 1;
       ko_.line_search = false;
       s = solve();
@@ -277,7 +285,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   bool constrained() const { return rod_.kirchhoff() || rod_.unknown_size() > 0; }
 
   KinsolStats solve() {
-    jacobian_calls_ = 0;
+    // Starting from kept factors, KINSOL's first Jacobian request means they were too stale.
+    jacobian_calls_ = ko_.reuse_factorisation ? 1 : 0;
     return kinsol_.solve(z_, residual_, jacobian_, ko_);
   }
 

@@ -48,6 +48,9 @@ struct KinsolOptions {
   Eigen::VectorXd u_scale;     ///< diagonal scaling of the unknowns; empty: ones
   Eigen::VectorXd f_scale;     ///< diagonal scaling of the residual; empty: ones
   int print_level = 0;         ///< KINSetPrintLevel 0-3: KINSOL's own iteration log on stdout
+  bool reuse_factorisation = false;  ///< start with the previous solve's factorised Jacobian
+                                     ///< (KINSetNoInitSetup); only with keep_factorisation and
+                                     ///< after a solve that factorised one
 };
 
 struct KinsolStats {
