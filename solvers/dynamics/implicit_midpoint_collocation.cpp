@@ -37,10 +37,12 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
                 /*keep_factorisation=*/true) {
     if (!(options.tol > 0.0))
       throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");
-    if (options.max_iterations < 1 || options.max_setup_calls < 1 || options.jacobian_max_age < 1)
+    if (options.max_iterations < 1 || options.max_setup_calls < 1 || options.jacobian_max_age < 0)
       throw std::invalid_argument(
-          "implicit-midpoint-collocation: max_iterations, max_setup_calls and jacobian_max_age "
-          "must be >= 1");
+          "implicit-midpoint-collocation: max_iterations and max_setup_calls must be >= 1 and "
+          "jacobian_max_age >= 0, got " + std::to_string(options.max_iterations) + ", " +
+          std::to_string(options.max_setup_calls) + ", " +
+          std::to_string(options.jacobian_max_age));
     n_ = rod_.node_size();
     nc_ = rod_.constraint_size();
     m_ = rod_.unknown_size();
