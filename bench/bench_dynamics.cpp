@@ -40,11 +40,12 @@ RestState straight(const DynamicProblem& p, int n) {
   return s;
 }
 
-void step_benchmark(benchmark::State& state, std::string scheme) {
+/// `fixed_dt` > 0: that step instead of the scheme's automatic one.
+void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt) {
   const auto scene = io::load_scene_from_string(kViscousCantilever, "bench.yaml");
   const auto problem = DynamicProblem::from_scene(scene);
   const int n = static_cast<int>(state.range(0));
-  const double dt = auto_time_step(problem, scheme, n);
+  const double dt = fixed_dt > 0.0 ? fixed_dt : auto_time_step(problem, scheme, n);
   const RestState initial = straight(problem, n);
   auto fresh = [&]() -> std::unique_ptr<Stepper> {
     if (scheme == "implicit-midpoint-collocation")
@@ -89,15 +90,26 @@ void step_benchmark(benchmark::State& state, std::string scheme) {
 const bool registered = [] {
   for (const char* scheme : {"variational", "implicit-midpoint", "bdf-alpha"}) {
     auto* b = benchmark::RegisterBenchmark((std::string("step/") + scheme).c_str(), step_benchmark,
-                                           std::string(scheme));
+                                           std::string(scheme), 0.0);
     for (int n : {10, 20, 50, 100}) b->Arg(n);
     b->Unit(benchmark::kMicrosecond);
   }
   // implicit-midpoint-collocation: KINSOL + KLU on the whole rod per step (cost per node-step).
   auto* c = benchmark::RegisterBenchmark("step/implicit-midpoint-collocation", step_benchmark,
-                                         std::string("implicit-midpoint-collocation"));
+                                         std::string("implicit-midpoint-collocation"), 0.0);
   for (int n : {20, 100}) c->Arg(n);
   c->Unit(benchmark::kMicrosecond);
+  // The same at fine steps (the scheme has no lower time-step bound; fine-dt studies).
+  for (const double dt : {1e-3, 1e-4}) {
+    auto* f = benchmark::RegisterBenchmark(
+        (std::string("step/implicit-midpoint-collocation/dt=") + (dt == 1e-3 ? "1ms" : "0.1ms"))
+            .c_str(),
+        [dt](benchmark::State& state) {
+          step_benchmark(state, "implicit-midpoint-collocation", dt);
+        });
+    for (int n : {20, 100}) f->Arg(n);
+    f->Unit(benchmark::kMicrosecond);
+  }
   return true;
 }();
 

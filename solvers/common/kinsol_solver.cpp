@@ -6,6 +6,7 @@
 
 #include <kinsol/kinsol.h>
 
+#include "kept_klu_solver.hpp"
 #include "sundials_support.hpp"
 
 namespace rodlab::solvers {
@@ -79,6 +80,7 @@ struct KinsolSolver::Impl {
   sundials::MatrixPtr A;
   sundials::LinearSolverPtr linear_solver;
   sundials::JacobianPattern pattern;  // the callback writes its values
+  bool keep_factorisation = false;
 
   /// What the C callbacks need during one solve.
   struct Call {
@@ -120,7 +122,8 @@ struct KinsolSolver::Impl {
   }
 };
 
-KinsolSolver::KinsolSolver(const SparseMatrix& pattern) : impl_(std::make_unique<Impl>(pattern)) {
+KinsolSolver::KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation)
+    : impl_(std::make_unique<Impl>(pattern)) {
   Impl& d = *impl_;
   const int n = d.pattern.size();
   d.context = sundials::make_context("KINSOL");
@@ -129,8 +132,13 @@ KinsolSolver::KinsolSolver(const SparseMatrix& pattern) : impl_(std::make_unique
   d.u_scale = sundials::make_vector(n, ctx, "KINSOL");
   d.f_scale = sundials::make_vector(n, ctx, "KINSOL");
   d.A = d.pattern.make_matrix(ctx);
+  d.keep_factorisation = keep_factorisation;
   d.linear_solver.reset(
-      sundials::check_created(SUNLinSol_KLU(d.u.get(), d.A.get(), ctx), "KINSOL", "SUNLinSol_KLU"));
+      keep_factorisation
+          ? sundials::check_created(sundials::make_kept_klu_solver(n, ctx), "KINSOL",
+                                    "make_kept_klu_solver")
+          : sundials::check_created(SUNLinSol_KLU(d.u.get(), d.A.get(), ctx), "KINSOL",
+                                    "SUNLinSol_KLU"));
 }
 
 KinsolSolver::~KinsolSolver() = default;
@@ -195,6 +203,13 @@ KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacob
   check_kin(KINSetNumMaxIters(mem, options.max_iterations), "KINSetNumMaxIters");
   check_kin(KINSetMaxSetupCalls(mem, options.max_setup_calls), "KINSetMaxSetupCalls");
   check_kin(KINSetPrintLevel(mem, options.print_level), "KINSetPrintLevel");
+  if (options.reuse_factorisation) {
+    if (!d.keep_factorisation)
+      throw std::invalid_argument(
+          "KinsolSolver::solve: reuse_factorisation needs a solver constructed with "
+          "keep_factorisation");
+    check_kin(KINSetNoInitSetup(mem, SUNTRUE), "KINSetNoInitSetup");
+  }
   if (options.max_newton_step > 0.0)
     check_kin(KINSetMaxNewtonStep(mem, options.max_newton_step), "KINSetMaxNewtonStep");
 

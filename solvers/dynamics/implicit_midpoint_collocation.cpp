@@ -33,13 +33,16 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
                               const ImplicitMidpointCollocationOptions& options,
                               std::span<const SE3> g0)
       : rod_(problem, options.nodes, "implicit-midpoint-collocation", true),
-        kinsol_(constrained() ? rod_.constrained_pattern() : rod_.pattern(false)) {
+        kinsol_(constrained() ? rod_.constrained_pattern() : rod_.pattern(false),
+                /*keep_factorisation=*/true) {
     if (!(options.tol > 0.0))
       throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");
-    if (options.max_iterations < 1 || options.max_setup_calls < 1 || options.jacobian_max_age < 1)
+    if (options.max_iterations < 1 || options.max_setup_calls < 1 || options.jacobian_max_age < 0)
       throw std::invalid_argument(
-          "implicit-midpoint-collocation: max_iterations, max_setup_calls and jacobian_max_age "
-          "must be >= 1");
+          "implicit-midpoint-collocation: max_iterations and max_setup_calls must be >= 1 and "
+          "jacobian_max_age >= 0, got " + std::to_string(options.max_iterations) + ", " +
+          std::to_string(options.max_setup_calls) + ", " +
+          std::to_string(options.jacobian_max_age));
     n_ = rod_.node_size();
     nc_ = rod_.constraint_size();
     m_ = rod_.unknown_size();
@@ -94,10 +97,14 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
       const bool reuse = jacobian_calls_ == 0 && cache_valid_;
       ++jacobian_calls_;
       if (reuse) {
-        // dF/dz = a I - df/dy: the stored one with the diagonal moved to this step's a.
+        // dF/dz = a I - df/dy: the stored one with the diagonal moved to this step's a (and
+        // stored so: the cache is always the matrix factorised last).
         std::copy(cached_.data(), cached_.data() + cached_.size(), J.valuePtr());
-        if (a_ != cached_a_)
+        if (a_ != cached_a_) {
           for (int i = 0; i < n_; ++i) J.coeffRef(i, i) += a_ - cached_a_;
+          std::copy(J.valuePtr(), J.valuePtr() + cached_.size(), cached_.data());
+          cached_a_ = a_;
+        }
         return;
       }
       ym_ = y_.head(n_) + z.head(n_);
@@ -157,6 +164,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     z_.segment(n_, nc_) = forces_;
     z_.tail(m_) = x_;
     double best = residual_norm(z_);
+    // F(0) = -f(h, y0) on the node rows: the explicit rate, without another evaluation.
+    f_.head(n_) = -F_.head(n_);
     z0_ = z_;
     trial_.segment(n_, nc_) = forces_;
     trial_.tail(m_) = x_;
@@ -167,7 +176,6 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     };
     if (history_ >= 2) consider((0.5 * dt) * (k1_ + ((dt + dt1_) / (dt1_ + dt2_)) * (k1_ - k2_)));
     if (history_ >= 1) consider((0.5 * dt) * k1_);
-    rate(y_, forces_, x_);
     consider((0.5 * dt) * f_.head(n_));
     z_ = z0_;
     ko_.u_scale.head(n_) = w_.cwiseInverse() * a_;
@@ -175,6 +183,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
 
     if (cache_valid_ && ++age_ > max_age_) cache_valid_ = false;
     ko_.max_setup_calls = max_setup_calls_;
+    // A kept Jacobian of this a is the matrix KLU factorised last: start from its factors.
+    ko_.reuse_factorisation = cache_valid_ && cached_a_ == a_;
     KinsolStats s = solve();
     long iterations = s.nonlinear_iterations;
     // Fallbacks (large steps): exact Newton with full steps (a fresh Jacobian every
@@ -189,6 +199,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
         z_.tail(m_) = x_;
       }
       cache_valid_ = false;
+      ko_.reuse_factorisation = false;
       ko_.max_setup_calls = 1;
       ko_.line_search = false;
       s = solve();
@@ -276,7 +287,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   bool constrained() const { return rod_.kirchhoff() || rod_.unknown_size() > 0; }
 
   KinsolStats solve() {
-    jacobian_calls_ = 0;
+    // Starting from kept factors, KINSOL's first Jacobian request means they were too stale.
+    jacobian_calls_ = ko_.reuse_factorisation ? 1 : 0;
     return kinsol_.solve(z_, residual_, jacobian_, ko_);
   }
 

@@ -48,6 +48,9 @@ struct KinsolOptions {
   Eigen::VectorXd u_scale;     ///< diagonal scaling of the unknowns; empty: ones
   Eigen::VectorXd f_scale;     ///< diagonal scaling of the residual; empty: ones
   int print_level = 0;         ///< KINSetPrintLevel 0-3: KINSOL's own iteration log on stdout
+  bool reuse_factorisation = false;  ///< start with the previous solve's factorised Jacobian
+                                     ///< (KINSetNoInitSetup); only with keep_factorisation and
+                                     ///< after a solve that factorised one
 };
 
 struct KinsolStats {
@@ -76,7 +79,13 @@ class KinsolSolver {
   /// A solver for square systems whose Jacobian has the structural non-zeros of `pattern`
   /// (values are ignored). Throws std::invalid_argument for a non-square or empty pattern and
   /// std::runtime_error when SUNDIALS cannot create its objects.
-  explicit KinsolSolver(const SparseMatrix& pattern);
+  /// `keep_factorisation` (for callers that solve many nearby systems, e.g. once per time
+  /// step): KLU analyses the pattern once, keeps its factors across solve() calls, refactors
+  /// numerically on the kept pivot order (a fresh factorisation when that looks
+  /// ill-conditioned), and does not factorise a Jacobian whose values equal the last
+  /// factorised one (kept_klu_solver.hpp). Without it, SUNDIALS' SUNLinSol_KLU, which
+  /// analyses and factorises afresh at the start of every solve().
+  explicit KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation = false);
   ~KinsolSolver();
   KinsolSolver(const KinsolSolver&) = delete;
   KinsolSolver& operator=(const KinsolSolver&) = delete;

@@ -1,0 +1,31 @@
+#pragma once
+// A KLU SUNLinearSolver for a Jacobian whose sparsity pattern never changes, for callers that
+// solve many nearby systems (a time stepper calls KINSol once per step). Unlike SUNDIALS'
+// SUNLinSol_KLU, which analyses the pattern again on the first setup of every KINSol call
+// (KINSOL's solver initialisation forces a full factorisation), it
+//   - analyses the pattern once (KLU's defaults: BTF and AMD ordering) and keeps the analysis
+//     for the life of the solver;
+//   - keeps the numeric factorisation across KINSol calls and refactors numerically on the
+//     kept pivot order (klu_refactor), falling back to a fresh factorisation with new pivots
+//     when the refactored matrix looks ill-conditioned (klu_rcond below eps^(2/3), the test
+//     SUNLinSol_KLU uses) or the refactorisation fails;
+//   - skips the factorisation altogether when the matrix values equal those it factorised
+//     last (a Jacobian reused across steps), so the solves use the same factors bit for bit.
+// Private to solvers/common (includes SUNDIALS and KLU headers).
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+
+namespace rodlab::solvers::sundials {
+
+/// A new solver owned by the caller (SUNLinSolFree releases it); NULL on allocation failure.
+/// `n` is the system size; the matrix passed to setup must be a CSC SUNSparseMatrix with the
+/// same pattern at every call.
+SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx);
+
+/// Numeric factorisations done by the solver (fresh and refactored) and setups it skipped.
+struct KeptKluCounts {
+  long factorisations = 0, refactorisations = 0, skipped = 0;
+};
+KeptKluCounts kept_klu_counts(SUNLinearSolver S);
+
+}  // namespace rodlab::solvers::sundials
