@@ -40,8 +40,10 @@ RestState straight(const DynamicProblem& p, int n) {
   return s;
 }
 
-/// `fixed_dt` > 0: that step instead of the scheme's automatic one.
-void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt) {
+/// `fixed_dt` > 0: that step instead of the scheme's automatic one; `grid`: the shooting
+/// schemes' spatial grid.
+void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt,
+                    ShootingGrid grid) {
   const auto scene = io::load_scene_from_string(kViscousCantilever, "bench.yaml");
   const auto problem = DynamicProblem::from_scene(scene);
   const int n = static_cast<int>(state.range(0));
@@ -51,9 +53,9 @@ void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt
     if (scheme == "implicit-midpoint-collocation")
       return make_implicit_midpoint_collocation(problem, {.nodes = n}, initial);
     if (scheme == "bdf-alpha")  // Till's alpha = -0.2
-      return make_bdf_alpha(problem, {n, 1e-10, 50, kDefaultBdfAlpha}, initial);
+      return make_bdf_alpha(problem, {n, 1e-10, 50, kDefaultBdfAlpha, grid}, initial);
     return scheme == "variational" ? make_variational(problem, {n, 1e-12, 20}, initial)
-                                   : make_implicit_midpoint(problem, {n, 1e-10, 50}, initial);
+                                   : make_implicit_midpoint(problem, {n, 1e-10, 50, grid}, initial);
   };
   // Time steps 10..kWindow of runs from rest, restarted outside the timing: the same window of
   // motion for every N and scheme.
@@ -90,13 +92,24 @@ void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt
 const bool registered = [] {
   for (const char* scheme : {"variational", "implicit-midpoint", "bdf-alpha"}) {
     auto* b = benchmark::RegisterBenchmark((std::string("step/") + scheme).c_str(), step_benchmark,
-                                           std::string(scheme), 0.0);
+                                           std::string(scheme), 0.0, ShootingGrid::euler);
+    for (int n : {10, 20, 50, 100}) b->Arg(n);
+    b->Unit(benchmark::kMicrosecond);
+  }
+  // The shooting schemes on the staggered grid (solver.grid: staggered).
+  for (const char* scheme : {"implicit-midpoint", "bdf-alpha"}) {
+    auto* b = benchmark::RegisterBenchmark(
+        (std::string("step/") + scheme + "/grid=staggered").c_str(),
+        [scheme](benchmark::State& state) {
+          step_benchmark(state, scheme, 0.0, ShootingGrid::staggered);
+        });
     for (int n : {10, 20, 50, 100}) b->Arg(n);
     b->Unit(benchmark::kMicrosecond);
   }
   // implicit-midpoint-collocation: KINSOL + KLU on the whole rod per step (cost per node-step).
   auto* c = benchmark::RegisterBenchmark("step/implicit-midpoint-collocation", step_benchmark,
-                                         std::string("implicit-midpoint-collocation"), 0.0);
+                                         std::string("implicit-midpoint-collocation"), 0.0,
+                                         ShootingGrid::euler);
   for (int n : {20, 100}) c->Arg(n);
   c->Unit(benchmark::kMicrosecond);
   // The same at fine steps (the scheme has no lower time-step bound; fine-dt studies).
@@ -105,7 +118,7 @@ const bool registered = [] {
         (std::string("step/implicit-midpoint-collocation/dt=") + (dt == 1e-3 ? "1ms" : "0.1ms"))
             .c_str(),
         [dt](benchmark::State& state) {
-          step_benchmark(state, "implicit-midpoint-collocation", dt);
+          step_benchmark(state, "implicit-midpoint-collocation", dt, ShootingGrid::euler);
         });
     for (int n : {20, 100}) f->Arg(n);
     f->Unit(benchmark::kMicrosecond);
