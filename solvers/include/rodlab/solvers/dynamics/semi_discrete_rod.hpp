@@ -97,7 +97,8 @@ class SemiDiscreteRod {
   const DynamicProblem& problem() const { return P_; }
   int nodes() const { return n_; }
   double ds() const { return ds_; }
-  /// 13 (N - 1) node unknowns (13 (N - 2) with a clamped tip), then D and W, then the actuator unknowns (muscle lengths; ida).
+  /// 13 (N - 1) node unknowns (13 (N - 2) with a clamped tip), then D and W, then the actuator
+  /// unknowns (muscle lengths; ida).
   int size() const { return dim_; }
   int node_size() const { return iD_; }
   int dissipated_index() const { return iD_; }
