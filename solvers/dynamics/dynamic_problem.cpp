@@ -69,11 +69,14 @@ TendonActuator tendon_actuator(const scene::Actuator& actuator, double L) {
 }  // namespace
 
 DynamicProblem DynamicProblem::from_scene(const scene::Scene& scene) {
-  if (scene.tip_clamped())
-    throw std::invalid_argument("dynamics: a clamped tip is not supported yet (tip.free only)");
   DynamicProblem p(scene.rod.to_model(), scene.base.pose);
   p.name_ = scene.name;
-  p.tip_ = std::get<scene::FreeTip>(scene.tip).wrench;
+  // tip: exactly one of free (a wrench schedule) and clamped (a pose): the scene loader's rule, so
+  // a clamped tip has no tip load (tip_ stays zero).
+  if (const auto* clamped = std::get_if<scene::ClampedTip>(&scene.tip))
+    p.tip_target_ = clamped->pose;
+  else
+    p.tip_ = std::get<scene::FreeTip>(scene.tip).wrench;
   const auto& loads = scene.loads;
   if (loads.gravity) {
     const double fluid = loads.buoyancy ? loads.buoyancy->fluid_density : 0.0;

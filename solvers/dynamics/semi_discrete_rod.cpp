@@ -30,15 +30,21 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
               "path length makes the semi-discrete system an index-3 DAE); use "
               "implicit-midpoint-collocation, variational, implicit-midpoint or bdf-alpha, or "
               "give a tension / pressure");
+  if (problem.is_kirchhoff() && problem.tip_clamped())
+    throw std::invalid_argument(who + ": rod.model kirchhoff with tip.clamped is not supported yet; "
+                                      "use implicit-midpoint or bdf-alpha, or rod.model cosserat");
   kirchhoff_ = problem.is_kirchhoff();
+  // A clamped tip node is prescribed like the base: nodes 1..N-2 are the unknowns.
+  clamped_ = problem.tip_clamped();
+  last_ = clamped_ ? n_ - 2 : n_ - 1;
   const auto& model = problem.model();
   const double L = problem.length();
   ds_ = L / (n_ - 1);
   M_ = model.M_diag();
   V_ = model.V_diag();
   m_ = problem.unknown_count();
-  dim_ = kBlock * (n_ - 1) + 2 + m_;
-  iD_ = kBlock * (n_ - 1);
+  dim_ = kBlock * last_ + 2 + m_;
+  iD_ = kBlock * last_;
   iW_ = iD_ + 1;
   iX_ = iD_ + 2;
 
@@ -85,14 +91,15 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
   g_[0] = problem.base();
 
   // Characteristic scales (header): L, 1, omega_1, L omega_1, E_bend.
-  const auto c = rod::characteristics(model, n_, rod::TipSupport::free);
+  const auto c = rod::characteristics(
+      model, n_, clamped_ ? rod::TipSupport::clamped : rod::TipSupport::free);
   omega1_ = 2.0 * std::numbers::pi * c.first_bending_frequency_hz;
   const double EI = std::min(model.K_diag()[0], model.K_diag()[1]);
   nu_star_ = model.xi_star().tail<3>();
   force_scale_ = EI / (L * L);
   const double e_bend = 0.5 * EI * std::pow(0.5 * std::numbers::pi / L, 2) * L;
   scale_.resize(dim_);
-  for (int j = 1; j < n_; ++j) {
+  for (int j = 1; j <= last_; ++j) {
     auto b = scale_.segment<kBlock>(kBlock * (j - 1));
     b.segment<3>(kP).setConstant(L);
     b.segment<4>(kQ).setConstant(1.0);
@@ -111,7 +118,7 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
 
 SemiDiscreteRod::Vector SemiDiscreteRod::tolerance_scale() const {
   Vector w = scale_;
-  for (int j = 1; j < n_; ++j) w.segment<3>(kBlock * (j - 1) + kP).setConstant(1.0);
+  for (int j = 1; j <= last_; ++j) w.segment<3>(kBlock * (j - 1) + kP).setConstant(1.0);
   return w;
 }
 
@@ -130,7 +137,7 @@ SemiDiscreteRod::Vector SemiDiscreteRod::rest_state(std::span<const SE3> g0) con
     }
   }
   Vector y0 = Vector::Zero(dim_);
-  for (int j = 1; j < n_; ++j) {
+  for (int j = 1; j <= last_; ++j) {
     auto b = y0.segment<kBlock>(kBlock * (j - 1));
     b.segment<3>(kP) = g[j].translation();
     const lie::Quaternion& q = g[j].rotation().quaternion();
@@ -190,11 +197,15 @@ void SemiDiscreteRod::actuator_rows(double t_c, const ConstRef& y_c, const Const
 void SemiDiscreteRod::unpack_nodes(const double* y) const {
   g_[0] = P_.base();
   eta_[0].setZero();
-  for (int j = 1; j < n_; ++j) {
+  for (int j = 1; j <= last_; ++j) {
     const double* b = y + kBlock * (j - 1);
     const lie::Quaternion q(b[kQ], b[kQ + 1], b[kQ + 2], b[kQ + 3]);
     g_[j] = SE3(SO3::from_quaternion(q), Vector3(b[kP], b[kP + 1], b[kP + 2]));
     eta_[j] = Eigen::Map<const Vector6>(b + kEta);
+  }
+  if (clamped_) {
+    g_[n_ - 1] = P_.tip_target();  // held by the clamp (eta_[n_ - 1] stays zero)
+    eta_[n_ - 1].setZero();
   }
 }
 
@@ -260,7 +271,7 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
   diss = 0.0;
   work = 0.0;
   for (int j = 0; j + 1 < n_; ++j) diss += seg_diss_[j], work += seg_work_[j];
-  for (int j = 1; j < n_; ++j) {
+  for (int j = 1; j <= last_; ++j) {
     const bool tip = j == n_ - 1;
     const double w = tip ? 0.5 * ds_ : ds_;
     const SO3& R = g_[j].rotation();
@@ -343,8 +354,8 @@ SemiDiscreteRod::Layout SemiDiscreteRod::layout(bool ledger, bool forces) const 
 
 SemiDiscreteRod::SparseMatrix SemiDiscreteRod::build_pattern(const Layout& lay) const {
   std::vector<Eigen::Triplet<double>> t;
-  for (int k = 1; k < n_; ++k) {
-    const int first = std::max(1, k - 1), last = std::min(n_ - 1, k + 1);
+  for (int k = 1; k <= last_; ++k) {
+    const int first = std::max(1, k - 1), last = std::min(last_, k + 1);
     for (int c = 0; c < kBlock; ++c) {
       const int col = kBlock * (k - 1) + c;
       for (int row = kBlock * (first - 1); row < kBlock * last; ++row) t.emplace_back(row, col, 1.0);
@@ -373,7 +384,7 @@ SemiDiscreteRod::SparseMatrix SemiDiscreteRod::build_pattern(const Layout& lay) 
   // Actuator unknowns: their forces reach every eta row (and the ledger); their rows see
   // their own unknown.
   for (int e = 0; e < m_; ++e) {
-    for (int node = 1; node < n_; ++node)
+    for (int node = 1; node <= last_; ++node)
       for (int i = 0; i < 6; ++i) t.emplace_back(kBlock * (node - 1) + kEta + i, lay.iX + e, 1.0);
     if (lay.ledger) {
       t.emplace_back(iD_, lay.iX + e, 1.0);
@@ -463,9 +474,9 @@ void SemiDiscreteRod::fill_newton_matrix(const Layout& lay, double t, const Cons
   // segments k - 1, k and node k, c_(k-1), c_k, and the path-length terms of segments k - 1, k.
   for (int colour = 0; colour < kColours; ++colour) {
     const int first = colour == 0 ? kColours : colour;
-    if (first > n_ - 1) continue;
+    if (first > last_) continue;
     for (int c = 0; c < kBlock; ++c) {
-      for (int k = first; k < n_; k += kColours) {
+      for (int k = first; k <= last_; k += kColours) {
         const int i = kBlock * (k - 1) + c;
         const double h = root_eps * std::max(std::abs(y[i]), scale_[i]);
         ytmp_[i] = y[i] + h;
@@ -474,7 +485,7 @@ void SemiDiscreteRod::fill_newton_matrix(const Layout& lay, double t, const Cons
       evaluate(t, ytmp_.data(), f1_.data(), diss, work, forces, x);
       if (c < kEta && lay.forces) constraint(yctmp_.data(), c1_.data());
       if (c < kEta && length_control_) segment_lengths(yctmp_.data(), seg_lenc_);
-      for (int k = first; k < n_; k += kColours) {
+      for (int k = first; k <= last_; k += kColours) {
         const int col = kBlock * (k - 1) + c;
         const double h = ytmp_[col] - y[col];
         const double hc = perturb_c ? yctmp_[col] - y_c[col] : h;

@@ -17,6 +17,9 @@ namespace {
 using lie::Matrix6;
 namespace se3 = lie::se3;
 
+/// How far (scaled, DynamicProblem::clamp_mismatch) an initial state may miss a clamped tip.
+constexpr double kClampStartTolerance = 1e-6;
+
 /// Shooting unknowns with actuator unknowns: Lambda(0) and one per muscle or length-controlled
 /// actuator (fixed capacity: no allocation in a step).
 constexpr int kMaxShootingUnknowns = 6 + DynamicProblem::kMaxActuators;
@@ -37,6 +40,16 @@ class ShootingStepper final : public Stepper {
                                   " initial nodes, got " + std::to_string(initial.xi.size()));
     xi_ = initial.xi;
     g_ = initial.g;
+    if (problem.tip_clamped()) {
+      // The state must meet the clamp on this grid (its poses are rebuilt from the strains).
+      update_poses();
+      const double miss = P_.clamp_mismatch(g_.back()).lpNorm<Eigen::Infinity>();
+      if (!(miss <= kClampStartTolerance))
+        throw std::invalid_argument(
+            name + ": the initial strains miss tip.clamped by " + std::to_string(miss) +
+            " (scaled) on this grid (explicit Euler RKMK); start from its own statics "
+            "(rkmk-euler-explicit at the same nodes)");
+    }
     eta_.assign(n_, Vector6::Zero());
     xi_u_.assign(n_, Vector6::Zero());
     eta_u_.assign(n_, Vector6::Zero());
@@ -157,6 +170,8 @@ class ShootingStepper final : public Stepper {
     Vector6 Lambda = x.template head<6>().cwiseProduct(scale_);
     Vector6 eta = Vector6::Zero();
     SE3 g = P_.base();
+    SE3 g_end = g;  // a clamped tip: the end-of-step poses (below)
+    const bool clamp_at_end = P_.tip_clamped() && end_ != 1.0;
     const bool unknowns = m_ > 0;
     if (unknowns) {
       for (int e = 0; e < m_; ++e)
@@ -192,16 +207,16 @@ class ShootingStepper final : public Stepper {
       }
       const Vector6 deta = (c_ * xi + xi_hist_[j]) - se3::ad_apply(xi, eta);             // (3.52)
       g = g * SE3::exp(ds_ * xi);
+      if (clamp_at_end) g_end = g_end * SE3::exp(ds_ * (end_ * xi + (1.0 - end_) * xi_[j]));
       Lambda += ds_ * dLambda;
       eta += ds_ * deta;
       for (const auto& e : entries_)
         if (e.node == j + 1)
           Lambda -= unknowns ? P_.entry_load(e.s, xi, F_) : P_.entry_load(e.s, xi, t_u_);
     }
-    const Vector6 W = P_.tip_load(g.rotation(), t_u_);
     Vec r;
     r.resize(6 + m_);
-    r.template head<6>() = (Lambda - W).cwiseQuotient(scale_);
+    r.template head<6>() = tip_residual(clamp_at_end ? g_end : g, Lambda);
     if (unknowns) {
       for (int j = 0; j < n_; ++j) xi_end_[j] = end_ * xi_u_[j] + (1.0 - end_) * xi_[j];
       const double L = P_.length();
@@ -212,6 +227,21 @@ class ShootingStepper final : public Stepper {
                                                         t_end_, rest_[e])) / L;
     }
     return r;
+  }
+
+  /// The six tip rows of the shooting residual from the marched tip wrench Lambda(L) at the
+  /// unknowns' time t_u and the tip pose g: a free tip's wrench balance (Lambda(L) - W_tip) /
+  /// scale (g at t_u), or a clamped tip's pose mismatch [log(g^-1 g_clamp) rotation;
+  /// translation / L] (DynamicProblem::clamp_mismatch; O(1) for a bend of about a radian, as the
+  /// scaled wrench; the thesis' static clamp, section 2.7.2, uses log(R_des^T R(L)) and
+  /// p(L) - p_des, the same zero set). For the clamp g is the END-of-step tip pose, marched from
+  /// the end-of-step strains a xi_u + (1 - a) xi (TimeRule::end_coefficient; BDF-alpha: xi_u
+  /// itself): with the midpoint rule, clamping at t_u left the poses rebuilt from
+  /// 2 xi_u - xi off the clamp by O(|xi_u - xi|^2), a mismatch that flips sign every step
+  /// (docs/dynamics.md "Clamped tips"). The clamp's reaction is Lambda(L).
+  Vector6 tip_residual(const SE3& g, const Vector6& Lambda) const {
+    if (P_.tip_clamped()) return P_.clamp_mismatch(g);
+    return (Lambda - P_.tip_load(g.rotation(), t_u_)).cwiseQuotient(scale_);
   }
 
   /// Unknown e's path length on the grid: trapezoid over the nodes, each node's weight the

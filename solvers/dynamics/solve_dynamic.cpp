@@ -1,6 +1,7 @@
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -25,30 +26,55 @@ constexpr int kStaticRefinement = 4;
 /// can account for (see energy_budget).
 constexpr double kUnstableFactor = 1e3;
 
+std::string scientific(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
+
+/// How far (scaled, DynamicProblem::clamp_mismatch) a clamp may sit from the rest shape's tip
+/// for `initial: straight`: rounding of base exp(L xi*) against the scene's numbers.
+constexpr double kClampRestTolerance = 1e-9;
+
 /// The initial state at rest: the reference configuration, or the static equilibrium under the
-/// t = 0 loads.
+/// t = 0 loads. A clamped tip must hold the reference configuration's tip to start from it.
 RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem,
                         const DynamicSolveOptions& options, std::string& failure) {
   const int n = options.nodes;
   const double ds = problem.length() / (n - 1);
   RestState state{std::vector<SE3>(n), std::vector<Vector6>(n, problem.model().xi_star())};
   if (options.initial == scene::Initial::straight) {
+    if (problem.tip_clamped()) {
+      const double miss = problem.clamp_mismatch(problem.reference_tip()).lpNorm<Eigen::Infinity>();
+      if (!(miss <= kClampRestTolerance))
+        throw std::invalid_argument(
+            "tip.clamped: the clamp's pose is not the rest shape's tip pose (scaled mismatch " +
+            scientific(miss) + "), so dynamics.initial: straight is not a state of the rod; "
+            "use dynamics.initial: static (the clamped equilibrium under the t = 0 loads)");
+    }
     for (int j = 0; j < n; ++j)
       state.g[j] = rod::reference_pose(problem.model(), problem.base(), j * ds);
     return state;
   }
+  // The shooting schemes on the Euler grid rebuild their poses from the node strains by explicit
+  // Euler RKMK, which misses a clamp by O(ds) with rk4's strains; with a clamped tip they start
+  // from the statics of their own grid (rkmk-euler-explicit at N: the same recursion at eta = 0,
+  // xi_dot = 0). The staggered grid takes its strains from the poses and meets the clamp exactly.
+  const bool own_grid = problem.tip_clamped() && options.grid == ShootingGrid::euler &&
+                        (options.scheme == "implicit-midpoint" || options.scheme == "bdf-alpha");
+  const int refinement = own_grid ? 1 : kStaticRefinement;
   statics::StaticSolveOptions so;
-  so.scheme = "rkmk-rk4";
-  so.nodes = kStaticRefinement * (n - 1) + 1;
+  so.scheme = own_grid ? "rkmk-euler-explicit" : "rkmk-rk4";
+  so.nodes = refinement * (n - 1) + 1;
   so.tol = std::min(options.tol, 1e-10);
   so.max_iterations = std::max(options.max_iterations, 50);
   const auto eq = statics::solve_static(scene, so);
   if (!eq.converged) failure = "the initial static equilibrium did not converge: " + eq.reason;
-  if (eq.centerline.size() != static_cast<std::size_t>(kStaticRefinement * (n - 1) + 1))
+  if (eq.centerline.size() != static_cast<std::size_t>(refinement * (n - 1) + 1))
     return state;  // no solution to start from; failure says why
   for (int j = 0; j < n; ++j) {
-    state.g[j] = eq.centerline[kStaticRefinement * j].pose;
-    state.xi[j] = eq.centerline[kStaticRefinement * j].twist;
+    state.g[j] = eq.centerline[refinement * j].pose;
+    state.xi[j] = eq.centerline[refinement * j].twist;
   }
   return state;
 }

@@ -44,6 +44,7 @@ class StaggeredShootingStepper final : public Stepper {
     const Vector6& xs = problem.model().xi_star();
     g_ = initial.g;
     xi_.assign(n_ - 1, Vector6::Zero());
+    if (problem.tip_clamped()) g_.back() = problem.tip_target();  // met to the statics' tolerance
     for (int j = 0; j + 1 < n_; ++j) {
       Vector6 x = (g_[j].inverse() * g_[j + 1]).log();
       if (problem.is_kirchhoff()) {
@@ -58,6 +59,7 @@ class StaggeredShootingStepper final : public Stepper {
     eta_u_ = eta_hist_ = eta_;
     xi_u_ = xi_hist_ = xi_ref_ = xi_;
     g_u_ = g_;
+    clamped_ = problem.tip_clamped();
     entry_at_.assign(n_, 0);
     entries_ = problem.entry_nodes(n_);
     for (const auto& e : entries_) entry_at_[e.node] = 1;
@@ -134,6 +136,8 @@ class StaggeredShootingStepper final : public Stepper {
     Vector6 lambda_pre = x.cwiseProduct(scale_);  // node j's balance before its entry load
     Vector6 eta = Vector6::Zero();
     SE3 g = P_.base();
+    SE3 g_end = g;  // a clamped tip: the end-of-step poses (tip_residual)
+    const double a = rule_->end_coefficient();
     double dissipated = 0.0, work = 0.0;
     eta_u_[0].setZero();
     // warm start from the last shot's strains unless that shot failed somewhere (then from the
@@ -154,6 +158,7 @@ class StaggeredShootingStepper final : public Stepper {
       dissipated += ds_ * xk_dot.dot(V.cwiseProduct(xk_dot));
       if (actuators_) work += ds_ * P_.actuator_power(xi, xk_dot, s_mid, F_);
       if (entry_at_[j]) work += entry_loads(j, xi).dot(eta);  // at node j, with its eta
+      if (clamped_) g_end = g_end * SE3::exp(ds_ * (a * xi + (1.0 - a) * xi_[j]));
       // node j + 1: compatibility, then its balance
       const SE3 G = SE3::exp(X);
       eta = G.inverse().Ad_apply(eta) + ds_ * se3::dexp_apply(-X, xi_dot);
@@ -179,10 +184,14 @@ class StaggeredShootingStepper final : public Stepper {
         lambda_pre -= entry;
       }
     }
-    const Vector6 W = P_.tip_load(g.rotation(), t_u_);
-    work += W.dot(eta);
     dissipated_u_ = dissipated;
-    work_u_ = work;
+    if (clamped_) {
+      // the clamp (no work): the end-of-step tip pose on it; lambda_pre is its reaction
+      work_u_ = work;
+      return P_.clamp_mismatch(g_end);
+    }
+    const Vector6 W = P_.tip_load(g.rotation(), t_u_);
+    work_u_ = work + W.dot(eta);
     return (lambda_pre - W).cwiseQuotient(scale_);
   }
 
@@ -257,6 +266,7 @@ class StaggeredShootingStepper final : public Stepper {
   std::vector<char> entry_at_;
   bool actuators_ = false;
   bool inner_failed_ = false;  ///< a segment's strain did not converge in the last shot
+  bool clamped_ = false;       ///< tip.clamped: the residual is the end-of-step pose mismatch
   DynamicProblem::Forces F_{};
   ShootingNewton<Vector6, Matrix6> newton_;
   long steps_ = 0;

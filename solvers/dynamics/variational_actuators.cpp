@@ -168,6 +168,7 @@ bool VariationalActuators::enforce_lengths(double t1, double dt, std::span<const
       if (node > 0 && node < n_)
         b[node] -= a.path.unit_wrench(a.path.s0(), xi[node == n_ - 1 ? node - 1 : node]);
     }
+    if (P_.tip_clamped()) b[n_ - 1].setZero();  // the clamp takes the tip's share
   }
   std::copy(mu.begin(), mu.end(), mu_free_.begin());
   std::copy(eta.begin(), eta.end(), eta_free_.begin());

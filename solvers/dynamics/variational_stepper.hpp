@@ -36,8 +36,16 @@ class Variational final : public Stepper {
       throw std::invalid_argument("variational: expected " + std::to_string(n_) +
                                   " initial poses, got " + std::to_string(g0.size()));
     kirchhoff_ = problem.is_kirchhoff();
+    clamped_ = problem.tip_clamped();
+    if (kirchhoff_ && clamped_)
+      throw std::invalid_argument(
+          "variational: rod.model kirchhoff with tip.clamped is not supported yet (the constraint "
+          "solve moves the tip); use implicit-midpoint or bdf-alpha, or rod.model cosserat");
     nu_star_ = problem.model().xi_star().tail<3>();
     g_.assign(g0.begin(), g0.end());
+    // A clamped tip holds the clamp's pose exactly (the initial state meets it to the statics'
+    // tolerance); the segments below then rebuild it to rounding in every step.
+    if (clamped_) g_.back() = problem.tip_target();
     G_.resize(n_ - 1);
     xi_.resize(n_ - 1);
     for (int j = 0; j + 1 < n_; ++j) {
@@ -135,6 +143,15 @@ class Variational final : public Stepper {
     if (!node(tip, t1, dt, E, P_.tip_load(g_[tip].rotation(), t1), lambda_prev, applied, drag,
               dissipated, work, F))
       return diverged(tip, t1, dt);
+    // A clamped tip node is held: its pose is the clamp's and eta = mu = 0 (so the last
+    // segment's E^(N-1) above is the identity); the clamp's reaction, lambda^(N-2) carried to the
+    // tip, does no work. The tip's node() above ran with eta_old = 0 (it added nothing to the
+    // energies and the ledger); its update is undone here, after the call, so that the free
+    // tip's path is the code it was (an `if` around the call cost the step 2-4 %: inlining).
+    if (clamped_) {
+      mu_[tip].setZero();
+      eta_[tip].setZero();
+    }
     if constexpr (kActuated) {
       double power = 0.0;
       if (!act_->enforce_lengths(t1, dt, G_, xi_, mu_, eta_, power))
@@ -268,6 +285,7 @@ class Variational final : public Stepper {
   Energy ledger_;
   double kinetic_old_ = 0.0;
   bool kirchhoff_ = false;
+  bool clamped_ = false;  ///< the tip node is held by a clamp (not solved)
   Vector3 nu_star_;
   std::optional<KirchhoffConstraint> constraint_;  ///< Kirchhoff rods only
   std::optional<VariationalActuators> act_;        ///< muscles, length control (kActuated)

@@ -240,6 +240,47 @@ BOOST_AUTO_TEST_CASE(damped_ledger_closes_with_a_cable) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(clamped_tip_settles_to_the_equilibrium_of_the_staggered_grid) {
+  // Both ends clamped (the clamp at the rest shape's tip), overdamped (3e4 Pa s), gravity
+  // across: bdf-alpha (alpha = 0, dt = 50 ms, 10 s) on the staggered grid settles where `ida`
+  // does on the same grid (asserted 1e-11 m at the middle node), second order in ds against
+  // rkmk-rk4 at N = 161 (N = 5, 9, 17: nodes at L / 2), and the tip stays on the clamp.
+  const auto s = io::load_scene_from_string(
+      "schema: rodlab.scene/1\nname: clamped-staggered\nrod:\n  length: 0.1\n"
+      "  section: {shape: circle, diameter: 0.01}\n"
+      "  material: {E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: 3.0e4}\n"
+      "tip:\n  clamped: {position: [0, 0, 0.1], rotation: identity}\n"
+      "loads: {gravity: [-9.81, 0, 0]}\n",
+      "clamped-staggered.yaml");
+  const auto P = DynamicProblem::from_scene(s);
+  solvers::statics::StaticSolveOptions so;
+  so.scheme = "rkmk-rk4";
+  so.nodes = 161;
+  const auto exact = solvers::statics::solve_static(s, so);
+  BOOST_REQUIRE(exact.converged);
+  const Vector3 mid_exact = exact.centerline[80].pose.translation();
+  std::vector<double> err;
+  for (int n : {5, 9, 17}) {
+    auto bdf = staggered("bdf-alpha", P, n, straight(P, n), 0.0);
+    run(*bdf, 0.05, 10.0);
+    const auto c = bdf->centerline();
+    auto ida = make_scheme("ida", P, n, straight(P, n), 1e-10, 1e-10);
+    run(*ida, 0.05, 10.0);
+    const Vector3 mid = c[(n - 1) / 2].pose.translation();
+    const double to_ida = (mid - ida->centerline()[(n - 1) / 2].pose.translation()).norm();
+    const double tip_off = (c.back().pose.translation() - Vector3(0, 0, 0.1)).norm();
+    err.push_back((mid - mid_exact).norm());
+    BOOST_TEST_MESSAGE("N = " << n << ": |mid - ida| = " << to_ida << " m, |mid - rk4| = "
+                              << err.back() << " m, tip off the clamp " << tip_off << " m");
+    BOOST_TEST(to_ida <= 1e-11);
+    BOOST_TEST(tip_off <= 1e-12);
+  }
+  const double order = std::log2(err[1] / err[2]);
+  BOOST_TEST_MESSAGE("order in ds " << std::log2(err[0] / err[1]) << ", " << order);
+  BOOST_TEST(order >= 1.8);
+  BOOST_TEST(order <= 2.3);
+}
+
 BOOST_AUTO_TEST_CASE(muscles_are_rejected_on_the_staggered_grid) {
   const auto s = actuated_scene(
       "{}", "  - muscle: {offset: [-0.003, 0], section: {shape: circle, diameter: 0.001}, "

@@ -11,8 +11,9 @@
 // tendon-like actuators (cables, fluidic chambers) are internal forces F_k c_k(xi). W_bar holds the
 // external distributed loads: gravity with buoyancy (2.36), drag (3.11)-(3.12), and a uniform
 // distributed wrench. The base is fixed (g(0) = base, eta(0) = 0); the tip is free with a point
-// wrench that may follow a schedule. The problem is immutable: schedules are evaluated at the
-// time asked for.
+// wrench that may follow a schedule, or clamped (g(L) = the clamp's pose, eta(L) = 0; the clamp's
+// reaction replaces Lambda(L) = W_tip and does no work; docs/dynamics.md "Clamped tips"). The
+// problem is immutable: schedules are evaluated at the time asked for.
 //
 // Artificial muscles are embedded rods (thesis 3.2.3): their stiffness and viscosity join
 // Lambda, their inertia makes M full where they sit off the centreline (M + Ad^T M_a Ad, (3.20)),
@@ -104,8 +105,24 @@ class DynamicProblem {
   bool has_drag() const { return drag_.has_value(); }
   /// The uniform distributed wrench of the scene at time t (loads.distributed).
   Vector6 applied_load(const SO3& R, double t) const;
-  /// The free tip's wrench at time t on a tip with rotation R (world: a dead load).
+  /// The free tip's wrench at time t on a tip with rotation R (world: a dead load); zero for a
+  /// clamped tip (the clamp's reaction is not a load).
   Vector6 tip_load(const SO3& R, double t) const;
+
+  // --- clamped tip ------------------------------------------------------------------------
+  /// The tip is held by a clamp at tip_target() (world pose): g(L) = tip_target(), eta(L) = 0.
+  bool tip_clamped() const { return tip_target_.has_value(); }
+  /// The clamp's pose (identity for a free tip).
+  SE3 tip_target() const { return tip_target_ ? *tip_target_ : SE3::identity(); }
+  /// The rest shape's tip pose, base exp(L xi*).
+  SE3 reference_tip() const { return base_ * SE3::exp(length() * model_.xi_star()); }
+  /// Scaled mismatch of a tip pose g against the clamp, [log(g^-1 g_clamp) rotation;
+  /// translation / L]: dimensionless, O(1) for a bend of about a radian.
+  Vector6 clamp_mismatch(const SE3& g) const {
+    Vector6 r = (g.inverse() * tip_target()).log();
+    r.tail<3>() /= length();
+    return r;
+  }
 
   // --- actuators -----------------------------------------------------------------------
   static constexpr int kMaxActuators = 16;
@@ -239,6 +256,7 @@ class DynamicProblem {
   std::optional<scene::Drag> drag_;
   std::optional<scene::DistributedWrench> distributed_;
   scene::Wrench tip_;
+  std::optional<SE3> tip_target_;  ///< clamped tip
   std::vector<TendonActuator> actuators_;
   std::vector<int> unknown_actuators_;
   bool muscles_ = false, length_control_ = false;

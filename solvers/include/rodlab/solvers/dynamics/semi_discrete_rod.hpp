@@ -4,7 +4,10 @@
 // of `variational` (variational.hpp), so at equal N these schemes differ only in time.
 //
 // Grid: nodes j = 0..N-1 at s_j = j ds, ds = L / (N - 1); node 0 is the fixed base (g_0 = base,
-// eta_0 = 0). State y, 13 unknowns per node j >= 1 (block j - 1): the position p_j (world), a
+// eta_0 = 0), and a clamped tip's node N - 1 is prescribed the same way (g = the clamp's pose,
+// eta = 0; not an unknown: the last segment still carries its stress, whose reaction the clamp
+// takes; docs/dynamics.md "Clamped tips"). State y, 13 unknowns per unknown node (j >= 1, block
+// j - 1): the position p_j (world), a
 // quaternion q_j = [w x y z] (normalised when R_j is formed; its ODE is linear and
 // skew-symmetric in q, so |q| is a quadratic invariant) and the body velocity
 // eta_j = [psi; kappa]; then two ledger unknowns, D (dissipated) and W (work_in).
@@ -95,7 +98,8 @@ class SemiDiscreteRod {
   const DynamicProblem& problem() const { return P_; }
   int nodes() const { return n_; }
   double ds() const { return ds_; }
-  /// 13 (N - 1) node unknowns, then D and W, then the actuator unknowns (muscle lengths; ida).
+  /// 13 (N - 1) node unknowns (13 (N - 2) with a clamped tip), then D and W, then the actuator
+  /// unknowns (muscle lengths; ida).
   int size() const { return dim_; }
   int node_size() const { return iD_; }
   int dissipated_index() const { return iD_; }
@@ -283,6 +287,8 @@ class SemiDiscreteRod {
   int n_;
   double ds_ = 0.0, omega1_ = 0.0, force_scale_ = 1.0;
   bool kirchhoff_ = false;
+  bool clamped_ = false;  ///< the tip node is held by a clamp (not an unknown)
+  int last_ = 0;          ///< the last unknown node: N - 1, or N - 2 with a clamped tip
   Vector3 nu_star_ = Vector3::Zero();
   int dim_ = 0, iD_ = 0, iW_ = 0, iX_ = 0, m_ = 0;
   Vector6 M_, V_;
