@@ -94,6 +94,26 @@ BOOST_AUTO_TEST_CASE(exp_log_and_dexp_inv_transpose_match) {
   BOOST_TEST(worst_dt <= 4 * kEps);
 }
 
+// The dexp kernels with the short b, c, d1, d2 series (the staggered shooting march's inner loop)
+// against se3::dexp_apply and se3::dexp_transpose_apply (themselves against the closed-form
+// matrix in test_dexp.cpp), over the same twists, large angles included (fall back).
+BOOST_AUTO_TEST_CASE(dexp_and_its_transpose_match) {
+  std::mt19937 rng(11u);
+  std::normal_distribution<double> n;
+  double worst = 0.0, worst_t = 0.0;
+  for (const Vector6& xi : twists()) {
+    const Vector6 y(n(rng), n(rng), n(rng), n(rng), n(rng), n(rng));
+    const sa::BCD k = sa::bcd(xi.head<3>().squaredNorm());
+    const Vector6 a = sa::dexp_apply(xi, y, k), b = se3::dexp_apply(xi, y);
+    const Vector6 at = sa::dexp_transpose_apply(xi, y, k), bt = se3::dexp_transpose_apply(xi, y);
+    worst = std::max(worst, (a - b).norm() / b.norm());
+    worst_t = std::max(worst_t, (at - bt).norm() / bt.norm());
+  }
+  BOOST_TEST_MESSAGE("max relative error / eps: dexp " << worst / kEps << ", dexp^T " << worst_t / kEps);
+  BOOST_TEST(worst <= 4 * kEps);
+  BOOST_TEST(worst_t <= 4 * kEps);
+}
+
 // Beyond the bounds every kernel defers to the general function: identical results.
 BOOST_AUTO_TEST_CASE(large_angles_fall_back) {
   const Vector6 xi = se3::join(Vector3(0.3, -1.2, 2.0), Vector3(0.1, 0.2, -0.3));
