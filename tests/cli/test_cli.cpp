@@ -325,6 +325,27 @@ BOOST_AUTO_TEST_CASE(dynamic_alpha_option) {
   BOOST_TEST(contains(read(box.work / "a.json"), "\"scheme\": \"bdf-alpha\""));
 }
 
+// --grid, the shooting schemes' spatial grid: anything but euler / staggered is bad input (2,
+// nothing written); staggered runs and lands elsewhere than euler at N = 10 (first against
+// second order in s: the tips differ by the Euler grid's spatial error, ~1e-3 m here).
+BOOST_AUTO_TEST_CASE(dynamic_grid_option) {
+  Sandbox box;
+  const std::string scene = quote(kScene);
+  expect_bad_input(box, "dynamic " + scene + " --scheme implicit-midpoint --grid chebyshev --t-end 0.1 --out a.json",
+                   {"--grid", "euler or staggered", "got chebyshev"});
+  double tip[2] = {0, 0};
+  int k = 0;
+  for (const char* grid : {"euler", "staggered"}) {
+    const Run ok = box.run("dynamic " + scene + " --scheme implicit-midpoint --grid " + grid +
+                           " --dt 0.01 --t-end 0.1 --nodes 10 --out g.json");
+    BOOST_TEST(ok.status == 0, ok.err);
+    const auto j = Json::parse(read(box.work / "g.json"));
+    tip[k++] = j["series"]["tip_position"].back()[0].get<double>();
+  }
+  BOOST_TEST_MESSAGE("tip x: euler " << tip[0] << ", staggered " << tip[1]);
+  BOOST_TEST(std::abs(tip[0] - tip[1]) > 1e-5);
+}
+
 BOOST_AUTO_TEST_CASE(unknown_scheme_lists_the_valid_ones_for_the_command) {
   Sandbox box;
   const std::string scene = quote(kScene);
