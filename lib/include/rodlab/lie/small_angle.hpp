@@ -54,7 +54,7 @@ inline constexpr auto kAtan5 = head<5>(kAtan9);
 struct EF {
   double e, f;
 };
-inline EF ef(double t2) {
+[[gnu::always_inline]] inline EF ef(double t2) {
   using coefficients::detail::horner;
   if (t2 < kTinyAngle * kTinyAngle) return {horner(detail::kE3, t2), horner(detail::kF4, t2)};
   if (t2 < kSmallAngle * kSmallAngle) return {horner(detail::kE6, t2), horner(detail::kF7, t2)};
@@ -70,7 +70,9 @@ inline double c(double t2) {
 }
 
 /// se3::dexp_inv_transpose_apply with the coefficients of |xi.head<3>()| given.
-inline Vector6 dexp_inv_transpose_apply(const Vector6& xi, const Vector6& lambda, const EF& k) {
+[[gnu::always_inline]] inline Vector6 dexp_inv_transpose_apply(const Vector6& xi,
+                                                               const Vector6& lambda,
+                                                               const EF& k) {
   const Vector3 w = xi.head<3>(), v = xi.tail<3>();
   const Vector3 m = lambda.head<3>(), f = lambda.tail<3>();
   const Vector3 w_m = w.cross(m), w_f = w.cross(f), v_f = v.cross(f);
@@ -80,8 +82,11 @@ inline Vector6 dexp_inv_transpose_apply(const Vector6& xi, const Vector6& lambda
   return se3::join(AinvT_m + CT_f, AinvT_f);
 }
 
-/// se3::dexp_inv_transpose_apply(xi, lambda).
-inline Vector6 dexp_inv_transpose_apply(const Vector6& xi, const Vector6& lambda) {
+/// se3::dexp_inv_transpose_apply(xi, lambda). Forced inline: the discrete Legendre transform of
+/// `variational` calls it once or twice per node and step, and GCC kept it out of line (18 % of
+/// the step at N = 100, perf, session 5).
+[[gnu::always_inline]] inline Vector6 dexp_inv_transpose_apply(const Vector6& xi,
+                                                               const Vector6& lambda) {
   return dexp_inv_transpose_apply(xi, lambda, ef(xi.head<3>().squaredNorm()));
 }
 
@@ -167,7 +172,7 @@ inline SE3 exp(const Vector6& xi) {
 }
 
 /// SE3::log of g, and the coefficients e, f of its rotation angle (for dexp^-T of the result).
-inline Vector6 log(const SE3& g, EF& k) {
+[[gnu::always_inline]] inline Vector6 log(const SE3& g, EF& k) {
   const Quaternion& q = g.rotation().quaternion();
   const double sign = q.w() < 0.0 ? -1.0 : 1.0;
   const double qw = sign * q.w();
