@@ -292,138 +292,135 @@ void dynamics_work_precision(const ValidationContext& context, std::vector<Check
 
 // --- joint convergence: N and dt refined together ----------------------------------------------
 
-/// Every available dynamics scheme on the viscous cantilever (0.1 s) at N = 6, 11, 21, 41 with
+/// The joint refinement of the viscous cantilever (0.1 s) at N = 6, 11, 21, 41 with
 /// dt = 0.01 s x ds / ds(6) (variational at its stability limit when that is smaller), against
-/// ida at N = 161: the discretisation error shrinks at each scheme's observed order (issue #4).
-void dynamics_joint_convergence(const ValidationContext& context, std::vector<Check>& out) {
-  if (!study::scheme_available("ida")) return;
+/// ida at N = 161, for `schemes` with the scene overrides `overrides` (KEY=VALUE): the sweep and
+/// its data set (rows: scheme, N, ds, dt, error), and the check that every run converged.
+struct JointStudy {
+  study::Sweep sweep;
+  std::string reference;
+  DataSet data;
+};
+JointStudy joint_convergence_study(const ValidationContext& context,
+                                   std::vector<solvers::SchemeInfo> schemes,
+                                   const std::vector<std::string>& overrides,
+                                   const std::string& name, const std::string& what,
+                                   const std::string& label, std::vector<Check>& out) {
   study::Settings s;
   s.scene_path = (context.scenes_dir / "viscous-cantilever.yaml").string();
-  s.scene = io::load_scene(s.scene_path);
+  s.overrides = overrides;
+  std::vector<io::Override> parsed;
+  for (const auto& o : overrides) parsed.push_back(io::parse_override(o));
+  s.scene = io::load_scene(s.scene_path, parsed);
   s.problem = Problem::dynamics;
-  s.schemes = study::available_schemes(Problem::dynamics);
+  s.schemes = std::move(schemes);
   s.refine = study::Refinement::joint;
   s.nodes = {6, 11, 21, 41};
   s.dts = {0.01};
   s.tol = 1e-10;
   s.t_end = 0.1;
-  s.command_line = "rodlab study convergence " + s.scene_path +
-                   " --refine joint --dt 0.01 --t-end 0.1";
+  s.command_line = "rodlab study convergence " + s.scene_path + " --refine joint --dt 0.01 --t-end 0.1";
+  for (const auto& o : overrides) s.command_line += " --set " + o;
   const study::Executor two{.jobs = 2};  // no timing here
-  const study::Sweep sweep = study::run_sweep(s, two);
-  const std::string reference = sweep.reference.value("description", std::string{});
-  DataSet d{.name = "studies_joint_convergence",
-            .description = "every dynamics scheme on scenes/viscous-cantilever.yaml (0.1 s), N and "
-                           "dt refined together; tip error at t_end against " + reference,
-            .columns = {"series", "scheme", "nodes", "ds", "dt", "error", "max_error"}};
-  for (const auto& r : sweep.rows)
+  JointStudy j{study::run_sweep(s, two), {}, {}};
+  j.reference = j.sweep.reference.value("description", std::string{});
+  j.data = DataSet{.name = name,
+                   .description = what + " on scenes/viscous-cantilever.yaml (0.1 s), N and dt "
+                                  "refined together; tip error at t_end against " + j.reference,
+                   .columns = {"series", "scheme", "nodes", "ds", "dt", "error", "max_error"}};
+  for (const auto& r : j.sweep.rows)
     if (r.role == "study")
-      d.add_row({r.spec.scheme, r.spec.scheme, r.spec.nodes, r.h, r.run.dt, r.error,
-                 r.max_error});
-  out.push_back(boolean_check("joint convergence (viscous-cantilever): every run converged",
-                              sweep.failed == 0, "the schemes run at these steps (docs/studies.md)",
-                              std::to_string(sweep.failed) + " runs failed"));
+      j.data.add_row({r.spec.scheme, r.spec.scheme, r.spec.nodes, r.h, r.run.dt, r.error,
+                      r.max_error});
+  out.push_back(boolean_check("joint convergence" + label + ": every run converged",
+                              j.sweep.failed == 0,
+                              "the schemes run at these steps, down to dt = 1.25 ms at N = 41 "
+                              "(docs/studies.md)",
+                              std::to_string(j.sweep.failed) + " runs failed"));
+  return j;
+}
+
+/// The observed order of one scheme in ds with dt ~ ds, checked in [lo, hi].
+Check joint_order_check(const study::SchemeOrder& o, const std::string& label, double lo,
+                        double hi, const std::string& why) {
+  Check c = range_check("joint convergence" + label + ": " + o.scheme +
+                            " observed order in ds, dt ~ ds",
+                        o.fit.order, lo, hi, why);
+  c.detail += "; " + std::to_string(o.fit.points) + " points" +
+              (o.fit.note.empty() ? "" : ", " + o.fit.note);
+  return c;
+}
+
+FigureSpec joint_figure(const std::string& name, const std::string& title,
+                        const std::string& caption) {
+  return {.name = name,
+          .kind = "loglog",
+          .x = "ds",
+          .y = {"error"},
+          .series = "series",
+          .title = title,
+          .xlabel = "ds [m]",
+          .ylabel = "tip error at t = 0.1 s [m]",
+          .caption = caption,
+          .reference_slopes = {1.0, 2.0},
+          .style = "lines+markers"};
+}
+
+/// Every available dynamics scheme: the discretisation error shrinks at each scheme's observed
+/// order (issue #4).
+void dynamics_joint_convergence(const ValidationContext& context, std::vector<Check>& out) {
+  if (!study::scheme_available("ida")) return;
+  JointStudy j = joint_convergence_study(context, study::available_schemes(Problem::dynamics), {},
+                                         "studies_joint_convergence", "every dynamics scheme",
+                                         " (viscous-cantilever)", out);
   // Expected: the spatial order, since dt ~ ds keeps the time error of the second-order schemes
   // at the same order and variational's step (its stability limit, ~1e-5 s) makes its
   // first-order time error smaller than its spatial one on these grids.
-  for (const auto& o : sweep.orders) {
+  for (const auto& o : j.sweep.orders) {
     const auto info = solvers::find_scheme(o.scheme);
     const bool first_in_s = info && std::string_view(info->order).ends_with("1 (s)");
-    const double lo = first_in_s ? 0.9 : 1.7, hi = first_in_s ? 1.3 : 2.3;
-    Check c = range_check("joint convergence (viscous-cantilever): " + o.scheme +
-                              " observed order in ds, dt ~ ds",
-                          o.fit.order, lo, hi,
-                          reference + "; design order " + o.expected +
-                              (first_in_s ? " (first order in s dominates)"
-                                          : " (second order in s; the time error is smaller)"));
-    c.detail += "; " + std::to_string(o.fit.points) + " points" +
-                (o.fit.note.empty() ? "" : ", " + o.fit.note);
-    out.push_back(std::move(c));
+    out.push_back(joint_order_check(
+        o, " (viscous-cantilever)", first_in_s ? 0.9 : 1.7, first_in_s ? 1.3 : 2.3,
+        j.reference + "; design order " + o.expected +
+            (first_in_s ? " (first order in s dominates)"
+                        : " (second order in s; the time error is smaller)")));
   }
-  d.figures.push_back({.name = "studies_joint_convergence",
-                       .kind = "loglog",
-                       .x = "ds",
-                       .y = {"error"},
-                       .series = "series",
-                       .title = "Dynamics: N and dt refined together (viscous cantilever)",
-                       .xlabel = "ds [m]",
-                       .ylabel = "tip error at t = 0.1 s [m]",
-                       .caption = "Tip error at t = 0.1 s against " + reference +
-                                  ", N = 6, 11, 21, 41 with dt = 0.01 s x ds / ds(N = 6) "
-                                  "(variational at its stability limit). Dashed: slopes 1 and "
-                                  "2. The shooting schemes (implicit-midpoint, bdf-alpha) are "
-                                  "first order in s; the others second.",
-                       .reference_slopes = {1.0, 2.0},
-                       .style = "lines+markers"});
-  context.emit(std::move(d));
+  j.data.figures.push_back(joint_figure(
+      "studies_joint_convergence", "Dynamics: N and dt refined together (viscous cantilever)",
+      "Tip error at t = 0.1 s against " + j.reference +
+          ", N = 6, 11, 21, 41 with dt = 0.01 s x ds / ds(N = 6) (variational at its stability "
+          "limit). Dashed: slopes 1 and 2. The shooting schemes (implicit-midpoint, bdf-alpha) "
+          "are first order in s; the others second."));
+  context.emit(std::move(j.data));
 }
 
 /// The shooting schemes on the staggered grid (solver.grid: staggered, docs/dynamics.md): the
-/// same joint refinement as above, where the Euler grid is first order in s (1.08, 1.07) and
-/// these are second order: the issue's "improve where the thesis reports limits".
+/// same joint refinement, where the Euler grid is first order in s (1.08, 1.07) and these are
+/// second order: the issue's "improve where the thesis reports limits". Measured (session 5):
+/// implicit-midpoint 1.87 (errors 2.2e-4 .. 8.7e-6 m, against 2.5e-3 m at N = 41 on the Euler
+/// grid), bdf-alpha 1.48 (4.5e-4 .. 1.9e-5 m: its damping of the stiff viscous modes at the
+/// coarse steps leaves the first points pre-asymptotic; against ida on the same grid it reaches
+/// 1.91 at fine dt, tests/dynamics/test_staggered_shooting.cpp).
 void dynamics_joint_convergence_staggered(const ValidationContext& context,
                                           std::vector<Check>& out) {
   if (!study::scheme_available("ida")) return;
-  study::Settings s;
-  s.scene_path = (context.scenes_dir / "viscous-cantilever.yaml").string();
-  s.overrides = {"solver.grid=staggered"};
-  const io::Override staggered = io::parse_override(s.overrides.front());
-  s.scene = io::load_scene(s.scene_path, std::span<const io::Override>(&staggered, 1));
-  s.problem = Problem::dynamics;
-  s.schemes = {*solvers::find_scheme("implicit-midpoint"), *solvers::find_scheme("bdf-alpha")};
-  s.refine = study::Refinement::joint;
-  s.nodes = {6, 11, 21, 41};
-  s.dts = {0.01};
-  s.tol = 1e-10;
-  s.t_end = 0.1;
-  s.command_line = "rodlab study convergence " + s.scene_path +
-                   " --schemes implicit-midpoint,bdf-alpha --refine joint --dt 0.01 --t-end 0.1"
-                   " --set solver.grid=staggered";
-  const study::Executor two{.jobs = 2};
-  const study::Sweep sweep = study::run_sweep(s, two);
-  const std::string reference = sweep.reference.value("description", std::string{});
-  DataSet d{.name = "studies_joint_convergence_staggered",
-            .description = "implicit-midpoint and bdf-alpha on the staggered grid, "
-                           "scenes/viscous-cantilever.yaml (0.1 s), N and dt refined together; "
-                           "tip error at t_end against " + reference,
-            .columns = {"series", "scheme", "nodes", "ds", "dt", "error", "max_error"}};
-  for (const auto& r : sweep.rows)
-    if (r.role == "study")
-      d.add_row({r.spec.scheme, r.spec.scheme, r.spec.nodes, r.h, r.run.dt, r.error,
-                 r.max_error});
-  out.push_back(boolean_check("joint convergence, staggered shooting grid: every run converged",
-                              sweep.failed == 0, "down to dt = 1.25 ms at N = 41",
-                              std::to_string(sweep.failed) + " runs failed"));
-  // Measured (session 5): implicit-midpoint 1.87 (errors 2.2e-4 .. 8.7e-6 m, against 2.5e-3 m
-  // at N = 41 on the Euler grid), bdf-alpha 1.48 (4.5e-4 .. 1.9e-5 m: its damping of the stiff
-  // viscous modes at the coarse steps leaves the first points pre-asymptotic; against ida on
-  // the same grid it reaches 1.91 at fine dt, tests/dynamics/test_staggered_shooting.cpp).
-  for (const auto& o : sweep.orders) {
+  JointStudy j = joint_convergence_study(
+      context, {*solvers::find_scheme("implicit-midpoint"), *solvers::find_scheme("bdf-alpha")},
+      {"solver.grid=staggered"}, "studies_joint_convergence_staggered",
+      "implicit-midpoint and bdf-alpha on the staggered grid", ", staggered shooting grid", out);
+  for (const auto& o : j.sweep.orders) {
     const bool bdf = o.scheme == "bdf-alpha";
-    Check c = range_check("joint convergence, staggered shooting grid: " + o.scheme +
-                              " observed order in ds, dt ~ ds",
-                          o.fit.order, bdf ? 1.3 : 1.7, 2.3,
-                          reference + "; second order in s and t" +
-                              (bdf ? " (pre-asymptotic at the coarse steps)" : ""));
-    c.detail += "; " + std::to_string(o.fit.points) + " points" +
-                (o.fit.note.empty() ? "" : ", " + o.fit.note);
-    out.push_back(std::move(c));
+    out.push_back(joint_order_check(o, ", staggered shooting grid", bdf ? 1.3 : 1.7, 2.3,
+                                    j.reference + "; second order in s and t" +
+                                        (bdf ? " (pre-asymptotic at the coarse steps)" : "")));
   }
-  d.figures.push_back({.name = "studies_joint_convergence_staggered",
-                       .kind = "loglog",
-                       .x = "ds",
-                       .y = {"error"},
-                       .series = "series",
-                       .title = "Dynamics: the shooting schemes on the staggered grid",
-                       .xlabel = "ds [m]",
-                       .ylabel = "tip error at t = 0.1 s [m]",
-                       .caption = "As the previous figure, for implicit-midpoint and bdf-alpha "
-                                  "with solver.grid: staggered (the semi-discrete rod of ida): "
-                                  "second order in s, where the thesis' Euler grid is first. "
-                                  "Dashed: slopes 1 and 2.",
-                       .reference_slopes = {1.0, 2.0},
-                       .style = "lines+markers"});
-  context.emit(std::move(d));
+  j.data.figures.push_back(joint_figure(
+      "studies_joint_convergence_staggered",
+      "Dynamics: the shooting schemes on the staggered grid",
+      "As the previous figure, for implicit-midpoint and bdf-alpha with solver.grid: staggered "
+      "(the semi-discrete rod of ida): second order in s, where the thesis' Euler grid is "
+      "first. Dashed: slopes 1 and 2."));
+  context.emit(std::move(j.data));
 }
 
 // --- stability map ---------------------------------------------------------------------------
