@@ -20,6 +20,7 @@
 #include "rodlab/solvers/dynamics/stepper.hpp"
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/dynamics/variational.hpp"
+#include "rodlab/solvers/statics/solve_static.hpp"
 
 namespace rodlab::testing::dynamics {
 
@@ -87,6 +88,19 @@ loads:
   gravity: [-9.81, 0, 0]
 )",
                                     "viscous-cantilever.yaml");
+}
+
+/// The statics tip of a scene, the reference of the settling tests: chebyshev at N = 24 (exact to
+/// ~1e-13 m on these scenes) unless another scheme and N are asked for.
+inline lie::Vector3 static_tip(const scene::Scene& s, const std::string& scheme = "chebyshev",
+                               int nodes = 24, double tol = 1e-10) {
+  solvers::statics::StaticSolveOptions so;
+  so.scheme = scheme;
+  so.nodes = nodes;
+  so.tol = tol;
+  const auto eq = solvers::statics::solve_static(s, so);
+  BOOST_REQUIRE_MESSAGE(eq.converged, eq.reason);
+  return eq.centerline.back().pose.translation();
 }
 
 /// At rest in the reference configuration (straight along +z).

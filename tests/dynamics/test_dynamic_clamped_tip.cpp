@@ -155,18 +155,6 @@ double max_abs_gravity(const std::vector<solvers::dynamics::Energy>& e) {
   return m;
 }
 
-/// The clamped statics' middle node: chebyshev at N = 25 (even node count is not needed: the
-/// Chebyshev grid interpolates; s = L/2 is a node of an odd grid).
-lie::Vector3 static_mid(const scene::Scene& s) {
-  solvers::statics::StaticSolveOptions so;
-  so.scheme = "chebyshev";
-  so.nodes = 25;
-  so.tol = 1e-12;
-  const auto eq = solvers::statics::solve_static(s, so);
-  BOOST_REQUIRE(eq.converged);
-  BOOST_REQUIRE(std::abs(eq.centerline[12].s - 0.5 * kL) < 1e-14);
-  return eq.centerline[12].pose.translation();
-}
 
 }  // namespace
 

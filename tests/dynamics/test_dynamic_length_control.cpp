@@ -100,15 +100,8 @@ double ledger_drift(const std::vector<Energy>& e) {
   return d;
 }
 
-Vector3 static_tip(const scene::Scene& s) {
-  solvers::statics::StaticSolveOptions so;
-  so.scheme = "rkmk-rk4";
-  so.nodes = 401;
-  so.tol = 1e-12;
-  const auto eq = solvers::statics::solve_static(s, so);
-  BOOST_REQUIRE_MESSAGE(eq.converged, eq.reason);
-  return eq.centerline.back().pose.translation();
-}
+/// The statics tip: rkmk-rk4 at N = 401 (dynamics_support.hpp).
+Vector3 rk4_tip(const scene::Scene& s) { return static_tip(s, "rkmk-rk4", 401, 1e-12); }
 
 /// A ramp 0 -> v over [0, t1], then held.
 std::string ramp(double v, double t1) {
@@ -223,7 +216,7 @@ BOOST_AUTO_TEST_CASE(every_scheme_settles_to_the_statics) {
     const std::string loads =
         "{distributed: {force: [0, 0.05, 0], frame: world}, "
         "drag: {fluid_density: 1000, laminar: [0, 0, 0, 1.6e-3, 1.6e-3, 1.6e-3]}}";
-    const Vector3 tip = static_tip(actuated_scene(loads, c.statics));
+    const Vector3 tip = rk4_tip(actuated_scene(loads, c.statics));
     BOOST_TEST_MESSAGE(c.what << ": static tip " << tip.transpose());
     const auto P = DynamicProblem::from_scene(actuated_scene(loads, c.dynamic, 300.0));
     for (const char* scheme : kSchemes) {

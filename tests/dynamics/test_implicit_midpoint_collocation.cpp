@@ -266,12 +266,7 @@ BOOST_AUTO_TEST_CASE(kirchhoff_settles_to_static_equilibrium) {
   // second order in ds. Over every run max |nu - nu*| <= 1e-10 (the constraint is solved at the
   // end of every step, the same tolerance as the rates).
   const auto s = kirchhoff_scene();
-  solvers::statics::StaticSolveOptions so;
-  so.scheme = "chebyshev";
-  so.nodes = 24;
-  const auto eq = solvers::statics::solve_static(s, so);
-  BOOST_REQUIRE(eq.converged);
-  const Vector3 tip = eq.centerline.back().pose.translation();
+  const Vector3 tip = static_tip(s);
   const auto P = DynamicProblem::from_scene(s);
   const double dt = 2e-3;
   const long steps = 1250;

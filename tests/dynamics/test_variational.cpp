@@ -35,15 +35,6 @@ scene::Scene settling_scene(const std::string& model) {
       "{}", 0.0, model);
 }
 
-/// The statics tip of a scene: chebyshev at N = 24 (exact to 1e-13 m here).
-lie::Vector3 static_tip(const scene::Scene& s) {
-  solvers::statics::StaticSolveOptions so;
-  so.scheme = "chebyshev";
-  so.nodes = 24;
-  const auto eq = solvers::statics::solve_static(s, so);
-  BOOST_REQUIRE(eq.converged);
-  return eq.centerline.back().pose.translation();
-}
 
 }  // namespace
 
