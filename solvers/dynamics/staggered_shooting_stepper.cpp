@@ -60,7 +60,6 @@ class StaggeredShootingStepper final : public Stepper {
     eta_.assign(n_, Vector6::Zero());
     eta_u_ = eta_hist_ = eta_;
     xi_u_ = xi_hist_ = xi_ref_ = xi_;
-    g_u_ = g_;
     clamped_ = problem.tip_clamped();
     entry_at_.assign(n_, 0);
     entries_ = problem.entry_nodes(n_);
@@ -75,7 +74,6 @@ class StaggeredShootingStepper final : public Stepper {
 
   StepStatus step(double t, double dt) override {
     t_u_ = t + rule_->theta() * dt;
-    dt_ = dt;
     c_ = rule_->coefficient(dt);
     rule_->history(RuleField::strain, dt, xi_, xi_hist_);
     rule_->history(RuleField::velocity, dt, eta_, eta_hist_);
@@ -168,7 +166,6 @@ class StaggeredShootingStepper final : public Stepper {
       g = g * G;
       const int k = j + 1;
       eta_u_[k] = eta;
-      g_u_[k] = g;
       const bool tip = k == n_ - 1;
       const double w = tip ? 0.5 * ds_ : ds_;
       const SO3& R = g.rotation();
@@ -281,10 +278,10 @@ class StaggeredShootingStepper final : public Stepper {
   std::string name_;
   Vector6 scale_, Kt_;
   Matrix6 Kt_matrix_;
-  double t_u_ = 0.0, dt_ = 0.0, c_ = 0.0;
+  double t_u_ = 0.0, c_ = 0.0;
   double dissipated_start_ = 0.0, work_start_ = 0.0, dissipated_u_ = 0.0, work_u_ = 0.0;
   std::vector<Vector6> xi_, eta_, xi_u_, eta_u_, xi_hist_, eta_hist_, xi_ref_;
-  std::vector<SE3> g_, g_u_;
+  std::vector<SE3> g_;
   std::vector<DynamicProblem::EntryNode> entries_;
   std::vector<char> entry_at_;
   bool actuators_ = false;
