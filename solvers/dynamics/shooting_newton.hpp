@@ -14,6 +14,8 @@
 
 #include <Eigen/LU>
 
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+
 namespace rodlab::solvers::dynamics {
 
 /// Relative finite-difference step of the Jacobian columns (scaled unknowns).
@@ -22,6 +24,13 @@ inline constexpr double kShootingFdStep = 1e-7;
 inline constexpr double kShootingSlowRatio = 0.5;
 /// A fresh Jacobian's step that does not reduce the residual is halved up to this many times.
 inline constexpr int kShootingHalvings = 10;
+
+/// Shooting unknowns with actuator unknowns: the base wrench and one per muscle or
+/// length-controlled actuator (fixed capacity: no allocation in a step).
+inline constexpr int kMaxShootingUnknowns = 6 + DynamicProblem::kMaxActuators;
+using ShootingVectorU = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxShootingUnknowns, 1>;
+using ShootingMatrixU = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0,
+                                      kMaxShootingUnknowns, kMaxShootingUnknowns>;
 
 /// Why a shooting solve stopped without converging (empty: it converged).
 struct ShootingOutcome {

@@ -1,5 +1,6 @@
 #include "rodlab/solvers/dynamics/shooting_stepper.hpp"
 
+#include "embedded_reference.hpp"
 #include "shooting_newton.hpp"
 #include "staggered_shooting_stepper.hpp"
 
@@ -19,13 +20,6 @@ namespace se3 = lie::se3;
 
 /// How far (scaled, DynamicProblem::clamp_mismatch) an initial state may miss a clamped tip.
 constexpr double kClampStartTolerance = 1e-6;
-
-/// Shooting unknowns with actuator unknowns: Lambda(0) and one per muscle or length-controlled
-/// actuator (fixed capacity: no allocation in a step).
-constexpr int kMaxShootingUnknowns = 6 + DynamicProblem::kMaxActuators;
-using VectorU = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxShootingUnknowns, 1>;
-using MatrixU = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxShootingUnknowns,
-                              kMaxShootingUnknowns>;
 
 class ShootingStepper final : public Stepper {
  public:
@@ -275,30 +269,16 @@ class ShootingStepper final : public Stepper {
       }
       rest_[e] = path_length(e, reference);
     }
-    VectorU x0(6 + m_);
+    ShootingVectorU x0(6 + m_);
     x0.head<6>() = lambda0;
     for (int e = 0; e < m_; ++e) x0[6 + e] = is_muscle_[e] ? path_length(e, xi_) / P_.length() : 0.0;
     extended_.start(x0);
   }
 
-  /// Muscles: the full constitutive reference of every node, Lambda = Kt (xi - xi_ref) +
-  /// tendons with Kt = K + K_mus + c (V + V_mus) and Kt xi_ref = (K + K_mus) xi* - (V + V_mus) h.
-  /// Kirchhoff rods keep nu_ref = nu* and solve the moment rows for omega_ref.
+  /// Muscles: the full constitutive reference of every node (embedded_reference.hpp).
   void muscle_references() {
-    const Vector6& xs = P_.model().xi_star();
-    for (int j = 0; j < n_; ++j) {
-      const lie::Matrix6 Ktot = lie::Matrix6(P_.model().K_diag().asDiagonal()) + K_emb_[j];
-      const lie::Matrix6 Vtot = lie::Matrix6(P_.model().V_diag().asDiagonal()) + V_emb_[j];
-      Kt_full_[j] = Ktot + c_ * Vtot;
-      const Vector6 b = Ktot * xs - Vtot * xi_hist_[j];
-      if (P_.is_kirchhoff()) {
-        xi_ref_[j].tail<3>() = xs.tail<3>();
-        xi_ref_[j].head<3>() = Kt_full_[j].topLeftCorner<3, 3>().partialPivLu().solve(
-            Vector3(b.head<3>() - Kt_full_[j].topRightCorner<3, 3>() * xs.tail<3>()));
-      } else {
-        xi_ref_[j] = Kt_full_[j].partialPivLu().solve(b);
-      }
-    }
+    for (int j = 0; j < n_; ++j)
+      embedded_reference(P_, K_emb_[j], V_emb_[j], c_, xi_hist_[j], Kt_full_[j], xi_ref_[j]);
   }
 
   /// Dissipation and input work of the step: the power at t_u (trapezoid in s) weighted with
@@ -344,7 +324,7 @@ class ShootingStepper final : public Stepper {
   std::vector<SE3> g_, g_u_;
   std::vector<DynamicProblem::EntryNode> entries_;
   ShootingNewton<Vector6, Matrix6> plain_;  ///< Lambda(0) only
-  ShootingNewton<VectorU, MatrixU> extended_;  ///< Lambda(0) and the actuator unknowns
+  ShootingNewton<ShootingVectorU, ShootingMatrixU> extended_;  ///< Lambda(0) and the actuator unknowns
   long steps_ = 0;
   Energy ledger_;
   // Actuator unknowns (muscle lengths, length-controlled forces) and embedded muscles.

@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 
 #include "rodlab/lie/small_angle.hpp"
+#include "embedded_reference.hpp"
 #include "shooting_newton.hpp"
 
 namespace rodlab::solvers::dynamics {
@@ -38,11 +39,6 @@ class StaggeredShootingStepper final : public Stepper {
     if (static_cast<int>(initial.g.size()) != n_)
       throw std::invalid_argument(name_ + ": expected " + std::to_string(n_) +
                                   " initial nodes, got " + std::to_string(initial.g.size()));
-    if (problem.has_muscles() || problem.unknown_count() > 0)
-      throw std::invalid_argument(
-          name_ + ": muscles, cable displacement control and chamber volume control are not "
-                  "supported on the staggered grid yet; use solver.grid euler, "
-                  "implicit-midpoint-collocation or variational");
     const Vector6& xs = problem.model().xi_star();
     g_ = initial.g;
     xi_.assign(n_ - 1, Vector6::Zero());
@@ -69,7 +65,26 @@ class StaggeredShootingStepper final : public Stepper {
     const double EI = std::min(K[0], K[1]), L = problem.length();
     scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
     // first guess: the base segment's elastic wrench in the initial state
-    newton_.start(K.cwiseProduct(xi_[0] - xs).cwiseQuotient(scale_));
+    const Vector6 x0 = K.cwiseProduct(xi_[0] - xs).cwiseQuotient(scale_);
+    m_ = problem.unknown_count();
+    if (m_ == 0)
+      plain_.start(x0);
+    else
+      setup_unknowns(x0);
+    muscles_ = problem.has_muscles();
+    if (muscles_) {
+      // the full node inertia and, at the segments' midpoints, the embedded stiffness and
+      // viscosity (as SemiDiscreteRod)
+      inertia_ = problem.node_inertia(n_);
+      K_emb_.resize(n_ - 1);
+      V_emb_.resize(n_ - 1);
+      Kt_full_.resize(n_ - 1);
+      Kt_accel_.resize(n_ - 1);
+      for (int j = 0; j + 1 < n_; ++j) {
+        K_emb_[j] = problem.embedded_stiffness((j + 0.5) * ds_);
+        V_emb_[j] = problem.embedded_viscosity((j + 0.5) * ds_);
+      }
+    }
   }
 
   StepStatus step(double t, double dt) override {
@@ -80,14 +95,22 @@ class StaggeredShootingStepper final : public Stepper {
     const Vector6& V = P_.model().V_diag();
     Kt_ = P_.model().K_diag() + c_ * V;
     Kt_matrix_ = Kt_.asDiagonal();
-    if (actuators_) F_ = P_.forces(t_u_);
+    t_end_ = t + dt;
+    if (actuators_ && m_ == 0) F_ = P_.forces(t_u_);  // else set by each shot from its unknowns
     // sigma = K (xi - xi*) + V (c xi + h) + tendons = Kt (xi - xi_ref) + tendons   (3.10)
-    const Vector6 K_xi_star = P_.model().K_diag().cwiseProduct(P_.model().xi_star());
-    for (int j = 0; j + 1 < n_; ++j)
-      xi_ref_[j] = (K_xi_star - V.cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
+    if (muscles_) {
+      muscle_references();
+    } else {
+      const Vector6 K_xi_star = P_.model().K_diag().cwiseProduct(P_.model().xi_star());
+      for (int j = 0; j + 1 < n_; ++j)
+        xi_ref_[j] = (K_xi_star - V.cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
+    }
     const ShootingOutcome out =
-        newton_.solve([this](const Vector6& x) { return shoot(x); }, c_, steps_ >= 2, opt_.tol,
-                      opt_.max_iterations);
+        m_ == 0 ? plain_.solve([this](const Vector6& x) { return shoot<Vector6>(x); }, c_,
+                               steps_ >= 2, opt_.tol, opt_.max_iterations)
+                : extended_.solve(
+                      [this](const ShootingVectorU& x) { return shoot<ShootingVectorU>(x); }, c_,
+                      steps_ >= 2, opt_.tol, opt_.max_iterations);
     if (!out.failure.empty())
       return StepStatus::failed(name_ + ": " + out.failure + " in the step from t = " +
                                 std::to_string(t) + " s (dt = " + std::to_string(dt) + " s)");
@@ -115,6 +138,11 @@ class StaggeredShootingStepper final : public Stepper {
     e.kinetic = kinetic_energy(P_.model(), eta_, ds_);
     e.strain = strain_energy_segments(P_.model(), xi_, ds_);
     e.gravity = gravity_energy(P_, g_, ds_);
+    if (muscles_) {
+      e.kinetic = kinetic_energy(inertia_, eta_, ds_);
+      e.strain += embedded_strain_energy_segments(P_, xi_, ds_);
+      e.gravity += embedded_gravity_energy(P_, g_, ds_);
+    }
     return e;
   }
 
@@ -126,14 +154,31 @@ class StaggeredShootingStepper final : public Stepper {
     return staggered_centerline(g_, xi_, ds_);
   }
 
+  std::vector<ActuatorReading> actuator_readings() const override {
+    std::vector<ActuatorReading> out(m_);
+    for (int e = 0; e < m_; ++e) out[e] = {which_[e], path_length(e, xi_), F_[which_[e]]};
+    return out;
+  }
+
  private:
   /// The march from the base with lambda_0 = x * scale (header); returns the scaled tip
-  /// residual lambda_(N-1) - W_tip, leaves the profiles at t_u and their powers behind.
-  Vector6 shoot(const Vector6& x) {
+  /// residual lambda_(N-1) - W_tip, leaves the profiles at t_u and their powers behind. With
+  /// actuator unknowns (x_e after the six: a muscle's Delta / L, a length-controlled actuator's
+  /// F / (E I / L^2)) also their rows: a muscle's x_e - L_e(xi_u) / L (its length at t_u), a
+  /// length-controlled actuator's (L_e(xi_end) - L_target(t + dt)) / L on the end-of-step strains
+  /// xi_end = a xi_u + (1 - a) xi (TimeRule::end_coefficient); L_e: path_length, the segment sum
+  /// of SemiDiscreteRod, so that the march solves the equations of `ida` and collocation.
+  template <class Vec>
+  Vec shoot(const Vec& x) {
     const Vector6& M = P_.model().M_diag();
     const Vector6& V = P_.model().V_diag();
     const bool kirchhoff = P_.is_kirchhoff();
-    Vector6 lambda_pre = x.cwiseProduct(scale_);  // node j's balance before its entry load
+    Vector6 lambda_pre = x.template head<6>().cwiseProduct(scale_);  // node j's balance before its entry load
+    if (m_ > 0) {
+      for (int e = 0; e < m_; ++e)
+        unknown_[e] = x[6 + e] * (is_muscle_[e] ? P_.length() : scale_[3]);
+      F_ = P_.forces(t_u_, unknown_.data(), rest_.data());
+    }
     Vector6 eta = Vector6::Zero();
     SE3 g = P_.base();
     SE3 g_end = g;  // a clamped tip: the end-of-step poses (tip_residual)
@@ -156,6 +201,7 @@ class StaggeredShootingStepper final : public Stepper {
       Vector6 xk_dot = xi_dot;
       if (kirchhoff) xk_dot.tail<3>().setZero();
       dissipated += ds_ * xk_dot.dot(V.cwiseProduct(xk_dot));
+      if (muscles_) dissipated += ds_ * P_.embedded_dissipation(xk_dot, s_mid);
       if (actuators_) work += ds_ * P_.actuator_power(xi, xk_dot, s_mid, F_);
       if (entry_at_[j]) work += entry_loads(j, xi).dot(eta);  // at node j, with its eta
       if (clamped_) g_end = g_end * SE3::exp(ds_ * (a * xi + (1.0 - a) * xi_[j]));
@@ -170,10 +216,21 @@ class StaggeredShootingStepper final : public Stepper {
       const double w = tip ? 0.5 * ds_ : ds_;
       const SO3& R = g.rotation();
       const Vector6 applied = P_.applied_load(R, t_u_), drag = P_.drag_load(eta);
-      const Vector6 Meta = M.cwiseProduct(eta);
-      lambda_pre = G.coAd_apply(lambda) +
-                   w * (M.cwiseProduct(c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
-                        P_.gravity_load(R) - applied - drag);                      // (3.41), (3.8)
+      if (muscles_) {
+        // the full node inertia and the muscles' weight on the node's cell (3.16)-(3.20)
+        const double s = k * ds_;
+        const Vector6 Meta = inertia_[k] * eta;
+        lambda_pre = G.coAd_apply(lambda) +
+                     w * (inertia_[k] * (c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
+                          P_.gravity_load(R) -
+                          P_.embedded_weight(R, s - 0.5 * ds_, std::min(P_.length(), s + 0.5 * ds_), s) -
+                          applied - drag);
+      } else {
+        const Vector6 Meta = M.cwiseProduct(eta);
+        lambda_pre = G.coAd_apply(lambda) +
+                     w * (M.cwiseProduct(c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
+                          P_.gravity_load(R) - applied - drag);                    // (3.41), (3.8)
+      }
       dissipated -= w * drag.dot(eta);
       work += w * applied.dot(eta);
       if (tip && entry_at_[k]) {
@@ -185,14 +242,77 @@ class StaggeredShootingStepper final : public Stepper {
       }
     }
     dissipated_u_ = dissipated;
+    Vec r;
+    r.resize(6 + m_);
     if (clamped_) {
       // the clamp (no work): the end-of-step tip pose on it; lambda_pre is its reaction
       work_u_ = work;
-      return P_.clamp_mismatch(g_end);
+      r.template head<6>() = P_.clamp_mismatch(g_end);
+    } else {
+      const Vector6 W = P_.tip_load(g.rotation(), t_u_);
+      work_u_ = work + W.dot(eta);
+      r.template head<6>() = (lambda_pre - W).cwiseQuotient(scale_);
     }
-    const Vector6 W = P_.tip_load(g.rotation(), t_u_);
-    work_u_ = work + W.dot(eta);
-    return (lambda_pre - W).cwiseQuotient(scale_);
+    if (m_ > 0) {
+      for (int j = 0; j + 1 < n_; ++j) xi_end_[j] = a * xi_u_[j] + (1.0 - a) * xi_[j];
+      const double L = P_.length();
+      for (int e = 0; e < m_; ++e)
+        r[6 + e] = is_muscle_[e] ? x[6 + e] - path_length(e, xi_u_) / L
+                                 : (path_length(e, xi_end_) -
+                                    P_.actuators()[which_[e]].target_length(t_end_, rest_[e])) / L;
+    }
+    return r;
+  }
+
+  /// Unknown e's path length on the staggered grid from the segments' strains: the sum over the
+  /// segments of |u_e| at the midpoint weighted by the overlap of the segment with the span
+  /// (SemiDiscreteRod::segment_lengths).
+  double path_length(int e, const std::vector<Vector6>& xi) const {
+    const auto& path = P_.actuators()[which_[e]].path;
+    double sum = 0.0;
+    for (int j = 0; j + 1 < n_; ++j) {
+      const double o = seg_weight_[static_cast<std::size_t>(e) * (n_ - 1) + j];
+      if (o != 0.0) sum += o * path.length_rate((j + 0.5) * ds_, xi[j]);
+    }
+    return sum;
+  }
+
+  /// Actuator unknowns: which actuators, their segment weights and grid rest lengths (at xi*),
+  /// the first guess (muscles: the length of the initial state; forces: 0).
+  void setup_unknowns(const Vector6& lambda0) {
+    which_ = P_.unknown_actuators();
+    is_muscle_.assign(m_, 0);
+    rest_.assign(m_, 0.0);
+    unknown_.assign(m_, 0.0);
+    seg_weight_.assign(static_cast<std::size_t>(m_) * (n_ - 1), 0.0);
+    xi_end_.assign(n_ - 1, Vector6::Zero());
+    const std::vector<Vector6> reference(n_ - 1, P_.model().xi_star());
+    for (int e = 0; e < m_; ++e) {
+      is_muscle_[e] = P_.actuators()[which_[e]].drive == ActuatorDrive::muscle;
+      for (int j = 0; j + 1 < n_; ++j)
+        seg_weight_[static_cast<std::size_t>(e) * (n_ - 1) + j] =
+            P_.span_overlap(which_[e], j * ds_, (j + 1) * ds_);
+      rest_[e] = path_length(e, reference);
+    }
+    ShootingVectorU x0(6 + m_);
+    x0.head<6>() = lambda0;
+    for (int e = 0; e < m_; ++e) x0[6 + e] = is_muscle_[e] ? path_length(e, xi_) / P_.length() : 0.0;
+    extended_.start(x0);
+  }
+
+  /// Muscles: every segment's full Kt and xi_ref (embedded_reference.hpp) and the operator of
+  /// segment_twist's acceleration, Kt^-1 (Kirchhoff: the moment rows' block, nu = nu* fixed),
+  /// factorised once per step.
+  void muscle_references() {
+    for (int j = 0; j + 1 < n_; ++j) {
+      embedded_reference(P_, K_emb_[j], V_emb_[j], c_, xi_hist_[j], Kt_full_[j], xi_ref_[j]);
+      if (P_.is_kirchhoff()) {
+        Kt_accel_[j].setZero();
+        Kt_accel_[j].topLeftCorner<3, 3>() = Kt_full_[j].topLeftCorner<3, 3>().inverse();
+      } else {
+        Kt_accel_[j] = Kt_full_[j].inverse();
+      }
+    }
   }
 
   /// Segment j's twist X = ds xi_j from the wrench lambda_pre of its first node before the entry
@@ -207,8 +327,9 @@ class StaggeredShootingStepper final : public Stepper {
     auto phi = [&](const Vector6& X, Vector6& lam) {
       lam = entry_at_[j] ? Vector6(lambda_pre - entry_loads(j, X / ds_)) : lambda_pre;
       const Vector6 sigma = small::dexp_transpose_apply(X, lam, small::bcd(X.head<3>().squaredNorm()));
-      return Vector6(ds_ * (actuators_ ? P_.solve_strain(Kt_matrix_, xi_ref_[j], sigma, s_mid, F_)
-                                       : P_.solve_strain(Kt_, xi_ref_[j], sigma, s_mid, t_u_)));
+      if (!actuators_) return Vector6(ds_ * P_.solve_strain(Kt_, xi_ref_[j], sigma, s_mid, t_u_));
+      return Vector6(ds_ * P_.solve_strain(muscles_ ? Kt_full_[j] : Kt_matrix_, xi_ref_[j], sigma,
+                                           s_mid, F_));
     };
     const double tol = kStrainTol * ds_;
     Vector6 X = X0;
@@ -233,8 +354,12 @@ class StaggeredShootingStepper final : public Stepper {
       const Vector3 dw = d.head<3>(), dv = d.tail<3>();
       Vector6 Ed;
       Ed << m.cross(dw) + f.cross(dv), f.cross(dw);
-      Ed = (0.5 * ds_) * Ed.cwiseQuotient(Kt_);
-      if (kirchhoff) Ed.tail<3>().setZero();  // nu = nu* inside Phi
+      if (muscles_) {
+        Ed = (0.5 * ds_) * (Kt_accel_[j] * Ed);  // the full Kt (embedded_reference.hpp)
+      } else {
+        Ed = (0.5 * ds_) * Ed.cwiseQuotient(Kt_);
+        if (kirchhoff) Ed.tail<3>().setZero();  // nu = nu* inside Phi
+      }
       X = next + Ed;
       // the next move would be about ratio * move: below tol, X is converged without another
       // evaluation of Phi (saves one of the ~4 passes per segment and shot)
@@ -278,7 +403,7 @@ class StaggeredShootingStepper final : public Stepper {
   std::string name_;
   Vector6 scale_, Kt_;
   Matrix6 Kt_matrix_;
-  double t_u_ = 0.0, c_ = 0.0;
+  double t_u_ = 0.0, t_end_ = 0.0, c_ = 0.0;
   double dissipated_start_ = 0.0, work_start_ = 0.0, dissipated_u_ = 0.0, work_u_ = 0.0;
   std::vector<Vector6> xi_, eta_, xi_u_, eta_u_, xi_hist_, eta_hist_, xi_ref_;
   std::vector<SE3> g_;
@@ -288,7 +413,16 @@ class StaggeredShootingStepper final : public Stepper {
   bool inner_failed_ = false;  ///< a segment's strain did not converge in the last shot
   bool clamped_ = false;       ///< tip.clamped: the residual is the end-of-step pose mismatch
   DynamicProblem::Forces F_{};
-  ShootingNewton<Vector6, Matrix6> newton_;
+  ShootingNewton<Vector6, Matrix6> plain_;  ///< lambda_0 only
+  ShootingNewton<ShootingVectorU, ShootingMatrixU> extended_;  ///< and the actuator unknowns
+  // Actuator unknowns (muscle lengths, length-controlled forces) and embedded muscles.
+  int m_ = 0;
+  bool muscles_ = false;
+  std::vector<int> which_;
+  std::vector<char> is_muscle_;
+  std::vector<double> rest_, unknown_, seg_weight_;  ///< seg_weight_: m x (N - 1)
+  std::vector<Vector6> xi_end_;
+  std::vector<Matrix6> inertia_, K_emb_, V_emb_, Kt_full_, Kt_accel_;
   long steps_ = 0;
   Energy ledger_;
 };

@@ -15,7 +15,10 @@
 // solved for xi_j by a fixed-point iteration on dexp^T (se3::dexp_transpose_apply), a
 // contraction of ratio about ds |lambda| / (2 E I). The rest is explicit, so one integration
 // costs a few exp, dexp and Ad applications per node. At equal N the march solves the equations
-// `ida` integrates in time: their difference is the time discretisation only.
+// `ida` integrates in time: their difference is the time discretisation only. Muscles and length
+// control (docs/dynamics.md "Muscles and length control"): the full node inertia, the embedded
+// Kt per segment (embedded_reference.hpp) and one extra shooting unknown per muscle (Delta) or
+// length-controlled actuator (F), with the rows of `ida` on the segment-sum path lengths.
 #include <memory>
 
 #include "rodlab/solvers/dynamics/shooting_stepper.hpp"
