@@ -12,6 +12,7 @@
 #include "rodlab/lie/small_angle.hpp"
 #include "embedded_reference.hpp"
 #include "shooting_newton.hpp"
+#include "staggered_paths.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {
@@ -156,7 +157,7 @@ class StaggeredShootingStepper final : public Stepper {
 
   std::vector<ActuatorReading> actuator_readings() const override {
     std::vector<ActuatorReading> out(m_);
-    for (int e = 0; e < m_; ++e) out[e] = {which_[e], path_length(e, xi_), F_[which_[e]]};
+    for (int e = 0; e < m_; ++e) out[e] = {which_[e], paths_.length(e, xi_), F_[which_[e]]};
     return out;
   }
 
@@ -166,8 +167,8 @@ class StaggeredShootingStepper final : public Stepper {
   /// actuator unknowns (x_e after the six: a muscle's Delta / L, a length-controlled actuator's
   /// F / (E I / L^2)) also their rows: a muscle's x_e - L_e(xi_u) / L (its length at t_u), a
   /// length-controlled actuator's (L_e(xi_end) - L_target(t + dt)) / L on the end-of-step strains
-  /// xi_end = a xi_u + (1 - a) xi (TimeRule::end_coefficient); L_e: path_length, the segment sum
-  /// of SemiDiscreteRod, so that the march solves the equations of `ida` and collocation.
+  /// xi_end = a xi_u + (1 - a) xi (TimeRule::end_coefficient); L_e: the segment sum
+  /// (staggered_paths.hpp) of SemiDiscreteRod, so that the march solves ida's equations.
   template <class Vec>
   Vec shoot(const Vec& x) {
     const Vector6& M = P_.model().M_diag();
@@ -177,7 +178,7 @@ class StaggeredShootingStepper final : public Stepper {
     if (m_ > 0) {
       for (int e = 0; e < m_; ++e)
         unknown_[e] = x[6 + e] * (is_muscle_[e] ? P_.length() : scale_[3]);
-      F_ = P_.forces(t_u_, unknown_.data(), rest_.data());
+      F_ = P_.forces(t_u_, unknown_.data(), paths_.rest().data());
     }
     Vector6 eta = Vector6::Zero();
     SE3 g = P_.base();
@@ -257,24 +258,11 @@ class StaggeredShootingStepper final : public Stepper {
       for (int j = 0; j + 1 < n_; ++j) xi_end_[j] = a * xi_u_[j] + (1.0 - a) * xi_[j];
       const double L = P_.length();
       for (int e = 0; e < m_; ++e)
-        r[6 + e] = is_muscle_[e] ? x[6 + e] - path_length(e, xi_u_) / L
-                                 : (path_length(e, xi_end_) -
-                                    P_.actuators()[which_[e]].target_length(t_end_, rest_[e])) / L;
+        r[6 + e] = is_muscle_[e] ? x[6 + e] - paths_.length(e, xi_u_) / L
+                                 : (paths_.length(e, xi_end_) - P_.actuators()[which_[e]].target_length(
+                                                                    t_end_, paths_.rest()[e])) / L;
     }
     return r;
-  }
-
-  /// Unknown e's path length on the staggered grid from the segments' strains: the sum over the
-  /// segments of |u_e| at the midpoint weighted by the overlap of the segment with the span
-  /// (SemiDiscreteRod::segment_lengths).
-  double path_length(int e, const std::vector<Vector6>& xi) const {
-    const auto& path = P_.actuators()[which_[e]].path;
-    double sum = 0.0;
-    for (int j = 0; j + 1 < n_; ++j) {
-      const double o = seg_weight_[static_cast<std::size_t>(e) * (n_ - 1) + j];
-      if (o != 0.0) sum += o * path.length_rate((j + 0.5) * ds_, xi[j]);
-    }
-    return sum;
   }
 
   /// Actuator unknowns: which actuators, their segment weights and grid rest lengths (at xi*),
@@ -282,21 +270,14 @@ class StaggeredShootingStepper final : public Stepper {
   void setup_unknowns(const Vector6& lambda0) {
     which_ = P_.unknown_actuators();
     is_muscle_.assign(m_, 0);
-    rest_.assign(m_, 0.0);
     unknown_.assign(m_, 0.0);
-    seg_weight_.assign(static_cast<std::size_t>(m_) * (n_ - 1), 0.0);
+    paths_ = StaggeredPaths(P_, which_, n_);
     xi_end_.assign(n_ - 1, Vector6::Zero());
-    const std::vector<Vector6> reference(n_ - 1, P_.model().xi_star());
-    for (int e = 0; e < m_; ++e) {
+    for (int e = 0; e < m_; ++e)
       is_muscle_[e] = P_.actuators()[which_[e]].drive == ActuatorDrive::muscle;
-      for (int j = 0; j + 1 < n_; ++j)
-        seg_weight_[static_cast<std::size_t>(e) * (n_ - 1) + j] =
-            P_.span_overlap(which_[e], j * ds_, (j + 1) * ds_);
-      rest_[e] = path_length(e, reference);
-    }
     ShootingVectorU x0(6 + m_);
     x0.head<6>() = lambda0;
-    for (int e = 0; e < m_; ++e) x0[6 + e] = is_muscle_[e] ? path_length(e, xi_) / P_.length() : 0.0;
+    for (int e = 0; e < m_; ++e) x0[6 + e] = is_muscle_[e] ? paths_.length(e, xi_) / P_.length() : 0.0;
     extended_.start(x0);
   }
 
@@ -420,7 +401,8 @@ class StaggeredShootingStepper final : public Stepper {
   bool muscles_ = false;
   std::vector<int> which_;
   std::vector<char> is_muscle_;
-  std::vector<double> rest_, unknown_, seg_weight_;  ///< seg_weight_: m x (N - 1)
+  std::vector<double> unknown_;
+  StaggeredPaths paths_;  ///< the unknowns' path lengths and rest lengths
   std::vector<Vector6> xi_end_;
   std::vector<Matrix6> inertia_, K_emb_, V_emb_, Kt_full_, Kt_accel_;
   long steps_ = 0;

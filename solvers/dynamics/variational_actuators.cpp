@@ -39,16 +39,10 @@ VariationalActuators::VariationalActuators(const DynamicProblem& problem, int no
   which_ = problem.unknown_actuators();
   const int m = static_cast<int>(which_.size());
   is_muscle_.assign(m, 0);
-  rest_.assign(m, 0.0);
   unknowns_.assign(m, 0.0);
-  seg_weight_.assign(static_cast<std::size_t>(m) * (n_ - 1), 0.0);
-  const std::vector<Vector6> reference(n_ - 1, problem.model().xi_star());
+  paths_ = StaggeredPaths(problem, which_, n_);
   for (int e = 0; e < m; ++e) {
     is_muscle_[e] = problem.actuators()[which_[e]].drive == ActuatorDrive::muscle;
-    for (int j = 0; j + 1 < n_; ++j)
-      seg_weight_[static_cast<std::size_t>(e) * (n_ - 1) + j] =
-          problem.span_overlap(which_[e], j * ds_, (j + 1) * ds_);
-    rest_[e] = path_length(e, reference);
     if (!is_muscle_[e]) lengths_.push_back(e);
   }
   const auto ml = static_cast<Eigen::Index>(lengths_.size());
@@ -72,21 +66,11 @@ Vector6 VariationalActuators::weight(int j, const SO3& R) const {
   return P_.embedded_weight(R, std::max(0.0, s - 0.5 * ds_), std::min(P_.length(), s + 0.5 * ds_), s);
 }
 
-double VariationalActuators::path_length(int e, std::span<const Vector6> xi) const {
-  const auto& path = P_.actuators()[which_[e]].path;
-  double sum = 0.0;
-  for (int j = 0; j + 1 < n_; ++j) {
-    const double o = seg_weight_[static_cast<std::size_t>(e) * (n_ - 1) + j];
-    if (o != 0.0) sum += o * path.length_rate((j + 0.5) * ds_, xi[j]);
-  }
-  return sum;
-}
-
 const DynamicProblem::Forces& VariationalActuators::forces(double t1, std::span<const Vector6> xi) {
   if (started_) F_prev_ = F_;
   for (std::size_t e = 0; e < which_.size(); ++e)
-    unknowns_[e] = is_muscle_[e] ? path_length(static_cast<int>(e), xi) : 0.0;
-  F_ = P_.forces(t1, unknowns_.data(), rest_.data());
+    unknowns_[e] = is_muscle_[e] ? paths_.length(static_cast<int>(e), xi) : 0.0;
+  F_ = P_.forces(t1, unknowns_.data(), paths_.rest().data());
   if (!started_) F_prev_ = F_;  // the first step: no earlier forces
   started_ = true;
   power_.setZero();
@@ -129,7 +113,7 @@ void VariationalActuators::next_lengths(double dt, std::span<const SE3> G,
     E = E_next;
   }
   for (std::size_t l = 0; l < lengths_.size(); ++l)
-    lengths_next_[static_cast<Eigen::Index>(l)] = path_length(lengths_[l], xi_next_);
+    lengths_next_[static_cast<Eigen::Index>(l)] = paths_.length(lengths_[l], xi_next_);
 }
 
 bool VariationalActuators::apply_forces(double dt, std::span<Vector6> mu, std::span<Vector6> eta) {
@@ -180,7 +164,7 @@ bool VariationalActuators::enforce_lengths(double t1, double dt, std::span<const
     next_lengths(dt, G, eta);
     for (Eigen::Index l = 0; l < ml; ++l) {
       const int e = lengths_[l];
-      r[l] = (lengths_next_[l] - P_.actuators()[which_[e]].target_length(t_next, rest_[e])) / L;
+      r[l] = (lengths_next_[l] - P_.actuators()[which_[e]].target_length(t_next, paths_.rest()[e])) / L;
     }
     return r.allFinite();
   };
@@ -224,7 +208,7 @@ bool VariationalActuators::enforce_lengths(double t1, double dt, std::span<const
 std::vector<ActuatorReading> VariationalActuators::readings(std::span<const Vector6> xi) const {
   std::vector<ActuatorReading> out(which_.size());
   for (std::size_t e = 0; e < which_.size(); ++e)
-    out[e] = {which_[e], path_length(static_cast<int>(e), xi), F_[which_[e]]};
+    out[e] = {which_[e], paths_.length(static_cast<int>(e), xi), F_[which_[e]]};
   return out;
 }
 

@@ -29,6 +29,7 @@
 
 #include "discrete_legendre.hpp"
 #include "rodlab/lie/se3.hpp"
+#include "staggered_paths.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 
@@ -78,8 +79,6 @@ class VariationalActuators {
 
  private:
   double weight_of(int j) const { return j == n_ - 1 ? 0.5 * ds_ : ds_; }
-  /// Path length of unknown e for segment strains xi.
-  double path_length(int e, std::span<const lie::Vector6> xi) const;
   /// The lengths of the length-controlled actuators' paths on the next step's segments, from
   /// the velocities eta; into lengths_next_.
   void next_lengths(double dt, std::span<const lie::SE3> G, std::span<const lie::Vector6> eta);
@@ -95,7 +94,7 @@ class VariationalActuators {
   // Unknowns (DynamicProblem::unknown_actuators()): muscles and length-controlled actuators.
   std::vector<int> which_;
   std::vector<char> is_muscle_;
-  std::vector<double> rest_, seg_weight_;  ///< rest lengths; overlaps (m x (N - 1))
+  StaggeredPaths paths_;                   ///< their path lengths and rest lengths
   std::vector<double> unknowns_;           ///< per unknown: Delta (muscle) or F (length)
   DynamicProblem::Forces F_{}, F_prev_{};  ///< this step's forces; the last step's
   bool started_ = false;                   ///< F_prev_ is set
