@@ -76,6 +76,7 @@ RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem
     state.g[j] = eq.centerline[refinement * j].pose;
     state.xi[j] = eq.centerline[refinement * j].twist;
   }
+  state.equilibrium = true;
   return state;
 }
 

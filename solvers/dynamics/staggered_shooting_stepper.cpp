@@ -37,7 +37,7 @@ class StaggeredShootingStepper final : public Stepper {
       : P_(problem), opt_(options), rule_(std::move(rule)), n_(options.nodes),
         ds_(problem.length() / (n_ - 1)), name_(std::string(rule_->name()) + " (grid staggered)") {
     if (n_ < 3) throw std::invalid_argument(name_ + ": nodes must be >= 3");
-    if (static_cast<int>(initial.g.size()) != n_)
+    if (static_cast<int>(initial.g.size()) != n_ || static_cast<int>(initial.xi.size()) != n_)
       throw std::invalid_argument(name_ + ": expected " + std::to_string(n_) +
                                   " initial nodes, got " + std::to_string(initial.g.size()));
     const Vector6& xs = problem.model().xi_star();
@@ -65,8 +65,9 @@ class StaggeredShootingStepper final : public Stepper {
     const auto& K = problem.model().K_diag();
     const double EI = std::min(K[0], K[1]), L = problem.length();
     scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
-    // first guess: the base segment's elastic wrench in the initial state
-    const Vector6 x0 = K.cwiseProduct(xi_[0] - xs).cwiseQuotient(scale_);
+    // first guess: the elastic wrench at the base of the initial state (its node strain there:
+    // exact for a statics solution; the base segment's mid-point strain is O(ds) off it)
+    const Vector6 x0 = K.cwiseProduct(initial.xi[0] - xs).cwiseQuotient(scale_);
     m_ = problem.unknown_count();
     if (m_ == 0)
       plain_.start(x0);
@@ -86,32 +87,18 @@ class StaggeredShootingStepper final : public Stepper {
         V_emb_[j] = problem.embedded_viscosity((j + 0.5) * ds_);
       }
     }
+    if (initial.equilibrium) settle();
   }
 
   StepStatus step(double t, double dt) override {
     t_u_ = t + rule_->theta() * dt;
     c_ = rule_->coefficient(dt);
+    end_ = rule_->end_coefficient();
     rule_->history(RuleField::strain, dt, xi_, xi_hist_);
     rule_->history(RuleField::velocity, dt, eta_, eta_hist_);
-    const Vector6& V = P_.model().V_diag();
-    Kt_ = P_.model().K_diag() + c_ * V;
-    Kt_matrix_ = Kt_.asDiagonal();
     t_end_ = t + dt;
-    if (actuators_ && m_ == 0) F_ = P_.forces(t_u_);  // else set by each shot from its unknowns
-    // sigma = K (xi - xi*) + V (c xi + h) + tendons = Kt (xi - xi_ref) + tendons   (3.10)
-    if (muscles_) {
-      muscle_references();
-    } else {
-      const Vector6 K_xi_star = P_.model().K_diag().cwiseProduct(P_.model().xi_star());
-      for (int j = 0; j + 1 < n_; ++j)
-        xi_ref_[j] = (K_xi_star - V.cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
-    }
-    const ShootingOutcome out =
-        m_ == 0 ? plain_.solve([this](const Vector6& x) { return shoot<Vector6>(x); }, c_,
-                               steps_ >= 2, opt_.tol, opt_.max_iterations)
-                : extended_.solve(
-                      [this](const ShootingVectorU& x) { return shoot<ShootingVectorU>(x); }, c_,
-                      steps_ >= 2, opt_.tol, opt_.max_iterations);
+    prepare_references();
+    const ShootingOutcome out = solve_shots(steps_ >= 2);
     if (!out.failure.empty())
       return StepStatus::failed(name_ + ": " + out.failure + " in the step from t = " +
                                 std::to_string(t) + " s (dt = " + std::to_string(dt) + " s)");
@@ -183,7 +170,7 @@ class StaggeredShootingStepper final : public Stepper {
     Vector6 eta = Vector6::Zero();
     SE3 g = P_.base();
     SE3 g_end = g;  // a clamped tip: the end-of-step poses (tip_residual)
-    const double a = rule_->end_coefficient();
+    const double a = end_;
     double dissipated = 0.0, work = 0.0;
     eta_u_[0].setZero();
     // warm start from the last shot's strains unless that shot failed somewhere (then from the
@@ -279,6 +266,52 @@ class StaggeredShootingStepper final : public Stepper {
     x0.head<6>() = lambda0;
     for (int e = 0; e < m_; ++e) x0[6 + e] = is_muscle_[e] ? paths_.length(e, xi_) / P_.length() : 0.0;
     extended_.start(x0);
+  }
+
+  /// The constitutive references of a solve at (t_u, c) with the histories h set:
+  /// sigma = K (xi - xi*) + V (c xi + h) + tendons = Kt (xi - xi_ref) + tendons   (3.10)
+  void prepare_references() {
+    const Vector6& V = P_.model().V_diag();
+    Kt_ = P_.model().K_diag() + c_ * V;
+    Kt_matrix_ = Kt_.asDiagonal();
+    if (actuators_ && m_ == 0) F_ = P_.forces(t_u_);  // else set by each shot from its unknowns
+    if (muscles_) {
+      muscle_references();
+    } else {
+      const Vector6 K_xi_star = P_.model().K_diag().cwiseProduct(P_.model().xi_star());
+      for (int j = 0; j + 1 < n_; ++j)
+        xi_ref_[j] = (K_xi_star - V.cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
+    }
+  }
+
+  /// Newton on the shooting unknowns (shooting_newton.hpp): lambda_0, and the actuator unknowns.
+  ShootingOutcome solve_shots(bool extrapolate) {
+    return m_ == 0 ? plain_.solve([this](const Vector6& x) { return shoot<Vector6>(x); }, c_,
+                                  extrapolate, opt_.tol, opt_.max_iterations)
+                   : extended_.solve(
+                         [this](const ShootingVectorU& x) { return shoot<ShootingVectorU>(x); },
+                         c_, extrapolate, opt_.tol, opt_.max_iterations);
+  }
+
+  /// `initial: static`: the given state is a statics solution sampled from another grid
+  /// (rkmk-rk4, 4x finer), O(ds^2) off this grid's equilibrium; re-solve the equilibrium here
+  /// with the march at c = 0 (no inertia, no viscous stress: the staggered grid's statics) under
+  /// the loads at t = 0. The rod then starts at rest in equilibrium (no spurious transient), and
+  /// the first step's Newton starts from its base wrench: single shooting from the sampled
+  /// state failed the first step of scenes/fixed-ends.yaml at N < 20 (residual 0.04-0.3).
+  /// Without convergence the given state stays.
+  void settle() {
+    t_u_ = t_end_ = 0.0;
+    c_ = 0.0;
+    end_ = 1.0;
+    std::fill(xi_hist_.begin(), xi_hist_.end(), Vector6::Zero());
+    std::fill(eta_hist_.begin(), eta_hist_.end(), Vector6::Zero());
+    prepare_references();
+    const ShootingOutcome out = solve_shots(false);
+    if (!out.failure.empty() || inner_failed_) return;
+    xi_ = xi_u_;
+    for (int j = 0; j + 1 < n_; ++j) g_[j + 1] = g_[j] * SE3::exp(ds_ * xi_[j]);
+    if (clamped_) g_.back() = P_.tip_target();  // on it to the shooting tolerance
   }
 
   /// Muscles: every segment's full Kt and xi_ref (embedded_reference.hpp) and the operator of
@@ -385,6 +418,7 @@ class StaggeredShootingStepper final : public Stepper {
   Vector6 scale_, Kt_;
   Matrix6 Kt_matrix_;
   double t_u_ = 0.0, t_end_ = 0.0, c_ = 0.0;
+  double end_ = 1.0;  ///< a of the end-of-step strains a xi_u + (1 - a) xi (1 while settling)
   double dissipated_start_ = 0.0, work_start_ = 0.0, dissipated_u_ = 0.0, work_u_ = 0.0;
   std::vector<Vector6> xi_, eta_, xi_u_, eta_u_, xi_hist_, eta_hist_, xi_ref_;
   std::vector<SE3> g_;

@@ -39,6 +39,9 @@ inline std::vector<result::CenterlineSample> staggered_centerline(std::span<cons
 struct RestState {
   std::vector<SE3> g;
   std::vector<Vector6> xi;
+  /// The state is a static equilibrium (`initial: static`, sampled from a statics solution on
+  /// another grid): a scheme may re-solve it on its own grid.
+  bool equilibrium = false;
 };
 
 /// An actuator whose force is not given (a muscle, or under length control): its path length on
