@@ -77,4 +77,19 @@ double embedded_gravity_energy(const DynamicProblem& problem, std::span<const SE
   });
 }
 
+Energy staggered_energy(const DynamicProblem& problem, std::span<const SE3> g,
+                        std::span<const Vector6> eta, std::span<const Vector6> xi, double ds,
+                        std::span<const lie::Matrix6> inertia) {
+  Energy e;
+  e.kinetic = inertia.empty() ? kinetic_energy(problem.model(), eta, ds)
+                              : kinetic_energy(inertia, eta, ds);
+  e.strain = strain_energy_segments(problem.model(), xi, ds);
+  e.gravity = gravity_energy(problem, g, ds);
+  if (!inertia.empty()) {
+    e.strain += embedded_strain_energy_segments(problem, xi, ds);
+    e.gravity += embedded_gravity_energy(problem, g, ds);
+  }
+  return e;
+}
+
 }  // namespace rodlab::solvers::dynamics

@@ -566,15 +566,9 @@ void SemiDiscreteRod::fill_newton_matrix(const Layout& lay, double t, const Cons
 }
 
 Energy SemiDiscreteRod::energy(double dissipated, double work_in) const {
-  Energy e;
-  e.kinetic = kinetic_energy(P_.model(), eta_, ds_);
-  e.strain = strain_energy_segments(P_.model(), xi_, ds_);
-  e.gravity = gravity_energy(P_, g_, ds_);
-  if (muscles_) {
-    e.kinetic = kinetic_energy(inertia_, eta_, ds_);
-    e.strain += embedded_strain_energy_segments(P_, xi_, ds_);
-    e.gravity += embedded_gravity_energy(P_, g_, ds_);
-  }
+  Energy e = staggered_energy(P_, g_, eta_, xi_, ds_,
+                              muscles_ ? std::span<const lie::Matrix6>(inertia_)
+                                       : std::span<const lie::Matrix6>());
   e.dissipated = dissipated;
   e.work_in = work_in;
   return e;

@@ -122,15 +122,11 @@ class StaggeredShootingStepper final : public Stepper {
   }
 
   Energy energy() const override {
-    Energy e = ledger_;
-    e.kinetic = kinetic_energy(P_.model(), eta_, ds_);
-    e.strain = strain_energy_segments(P_.model(), xi_, ds_);
-    e.gravity = gravity_energy(P_, g_, ds_);
-    if (muscles_) {
-      e.kinetic = kinetic_energy(inertia_, eta_, ds_);
-      e.strain += embedded_strain_energy_segments(P_, xi_, ds_);
-      e.gravity += embedded_gravity_energy(P_, g_, ds_);
-    }
+    Energy e = staggered_energy(P_, g_, eta_, xi_, ds_,
+                                muscles_ ? std::span<const lie::Matrix6>(inertia_)
+                                         : std::span<const lie::Matrix6>());
+    e.dissipated = ledger_.dissipated;
+    e.work_in = ledger_.work_in;
     return e;
   }
 

@@ -2,6 +2,7 @@
 // Shared scenes and measurements of the dynamics tests. The rod is the thesis' Table 2.1 rod
 // (L = 0.1 m, D = 1 cm, E = 1 MPa, G = 0.33 MPa, rho = 1000 kg/m^3), clamped at the origin,
 // along +z.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -101,6 +102,61 @@ inline lie::Vector3 static_tip(const scene::Scene& s, const std::string& scheme 
   const auto eq = solvers::statics::solve_static(s, so);
   BOOST_REQUIRE_MESSAGE(eq.converged, eq.reason);
   return eq.centerline.back().pose.translation();
+}
+
+/// max |total - total_0| over an energy series: the ledger's drift (kinetic + strain + gravity +
+/// dissipated - work_in is constant in the semi-discrete balance).
+inline double ledger_drift(const std::vector<solvers::dynamics::Energy>& e) {
+  double d = 0.0;
+  for (const auto& x : e) d = std::max(d, std::abs(x.total() - e.front().total()));
+  return d;
+}
+
+/// max |gravity energy| over an energy series (the scale of a gravity release's ledger).
+inline double max_abs_gravity(const std::vector<solvers::dynamics::Energy>& e) {
+  double m = 0.0;
+  for (const auto& x : e) m = std::max(m, std::abs(x.gravity));
+  return m;
+}
+
+/// max |work_in| over an energy series (the scale of an actuated run's ledger).
+inline double max_abs_work_in(const std::vector<solvers::dynamics::Energy>& e) {
+  double m = 0.0;
+  for (const auto& x : e) m = std::max(m, std::abs(x.work_in));
+  return m;
+}
+
+/// What run_steps records: the state after every step (and at t = 0).
+struct StepTrace {
+  std::vector<double> t;
+  std::vector<lie::Vector3> tip;
+  std::vector<solvers::dynamics::Energy> energy;
+  long iterations = 0;  ///< summed StepStatus::iterations
+  double wall = 0.0;    ///< seconds for the steps
+};
+
+/// `steps` steps of dt from t = 0, each required to converge; after step i, after_step(i).
+template <class AfterStep>
+StepTrace run_steps(solvers::dynamics::Stepper& s, double dt, long steps, AfterStep after_step) {
+  StepTrace r;
+  r.t.push_back(0.0);
+  r.tip.push_back(s.tip_position());
+  r.energy.push_back(s.energy());
+  const auto start = std::chrono::steady_clock::now();
+  for (long i = 0; i < steps; ++i) {
+    const auto status = s.step(i * dt, dt);
+    BOOST_REQUIRE_MESSAGE(status.ok, "step " << i << " (dt = " << dt << "): " << status.reason);
+    r.iterations += status.iterations;
+    r.t.push_back((i + 1) * dt);
+    r.tip.push_back(s.tip_position());
+    r.energy.push_back(s.energy());
+    after_step(i);
+  }
+  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+inline StepTrace run_steps(solvers::dynamics::Stepper& s, double dt, long steps) {
+  return run_steps(s, dt, steps, [](long) {});
 }
 
 /// At rest in the reference configuration (straight along +z).

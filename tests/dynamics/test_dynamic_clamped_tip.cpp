@@ -143,18 +143,6 @@ double timoshenko_clamped_clamped_hz() {
   return 0.5 * (lo + hi) / (2.0 * std::numbers::pi);
 }
 
-double ledger_drift(const std::vector<solvers::dynamics::Energy>& e) {
-  double d = 0.0;
-  for (const auto& x : e) d = std::max(d, std::abs(x.total() - e.front().total()));
-  return d;
-}
-
-double max_abs_gravity(const std::vector<solvers::dynamics::Energy>& e) {
-  double m = 0.0;
-  for (const auto& x : e) m = std::max(m, std::abs(x.gravity));
-  return m;
-}
-
 
 }  // namespace
 

@@ -59,49 +59,27 @@ std::string chamber(const std::string& volume) {
 }
 constexpr double kChamberArea = std::numbers::pi * 0.0015 * 0.0015;
 
-struct Trace {
-  std::vector<Energy> energy;
-  std::vector<Vector3> tip;
+/// run_steps and, after every step (from step `first_checked` on), every length-controlled
+/// actuator's length against its target at the step's end (`target(k, t)` of actuator k).
+struct Trace : StepTrace {
   double worst_length_error = 0.0;  ///< max over steps and actuators of |length - target|
   double min_force = 1e300, max_force = -1e300;
-  long iterations = 0;
-  double wall = 0.0;
 };
 
-/// `steps` steps of dt; after each (from step `first_checked` on), every length-controlled
-/// actuator's length against its target at the step's end (`target(k, t)` of actuator k).
 template <class Target>
 Trace run(Stepper& s, double dt, long steps, Target target, long first_checked = 0) {
   Trace r;
-  r.energy.push_back(s.energy());
-  r.tip.push_back(s.tip_position());
-  const auto start = std::chrono::steady_clock::now();
-  for (long i = 0; i < steps; ++i) {
-    const auto status = s.step(i * dt, dt);
-    BOOST_REQUIRE_MESSAGE(status.ok, "step " << i << " (dt = " << dt << "): " << status.reason);
-    r.iterations += status.iterations;
-    r.energy.push_back(s.energy());
-    r.tip.push_back(s.tip_position());
-    if (i < first_checked) continue;
+  static_cast<StepTrace&>(r) = run_steps(s, dt, steps, [&](long i) {
+    if (i < first_checked) return;
     for (const auto& a : s.actuator_readings()) {
       r.worst_length_error =
           std::max(r.worst_length_error, std::abs(a.length - target(a.actuator, (i + 1) * dt)));
       r.min_force = std::min(r.min_force, a.force);
       r.max_force = std::max(r.max_force, a.force);
     }
-  }
-  r.wall = seconds_since(start);
+  });
   return r;
 }
-
-double ledger_drift(const std::vector<Energy>& e) {
-  double d = 0.0;
-  for (const auto& x : e) d = std::max(d, std::abs(x.total() - e.front().total()));
-  return d;
-}
-
-/// The statics tip: rkmk-rk4 at N = 401 (dynamics_support.hpp).
-Vector3 rk4_tip(const scene::Scene& s) { return static_tip(s, "rkmk-rk4", 401, 1e-12); }
 
 /// A ramp 0 -> v over [0, t1], then held.
 std::string ramp(double v, double t1) {
@@ -216,7 +194,7 @@ BOOST_AUTO_TEST_CASE(every_scheme_settles_to_the_statics) {
     const std::string loads =
         "{distributed: {force: [0, 0.05, 0], frame: world}, "
         "drag: {fluid_density: 1000, laminar: [0, 0, 0, 1.6e-3, 1.6e-3, 1.6e-3]}}";
-    const Vector3 tip = rk4_tip(actuated_scene(loads, c.statics));
+    const Vector3 tip = static_tip(actuated_scene(loads, c.statics), "rkmk-rk4", 401, 1e-12);
     BOOST_TEST_MESSAGE(c.what << ": static tip " << tip.transpose());
     const auto P = DynamicProblem::from_scene(actuated_scene(loads, c.dynamic, 300.0));
     for (const char* scheme : kSchemes) {
@@ -257,8 +235,7 @@ BOOST_AUTO_TEST_CASE(ledger_closes_with_a_displacement_schedule) {
     auto st = make_scheme(scheme, P, 11, straight(P, 11));
     const double dt = scheme == "variational" ? step_of(scheme, P, 11) : 1e-3;
     const Trace r = run(*st, dt, std::lround(0.4 / dt), [](int, double) { return 0.0; });
-    double work = 0.0;
-    for (const auto& e : r.energy) work = std::max(work, std::abs(e.work_in));
+    const double work = max_abs_work_in(r.energy);
     const double drift = ledger_drift(r.energy);
     BOOST_TEST_MESSAGE(scheme << ": max |work_in| " << work << " J, ledger drift " << drift
                        << " J = " << drift / work << " of it, wall " << r.wall << " s");

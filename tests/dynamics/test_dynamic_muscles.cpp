@@ -56,41 +56,7 @@ std::string muscle(const std::string& input, double stiffness = 0.0,
 const std::string kDrag =
     "{drag: {fluid_density: 1000, laminar: [0, 0, 0, 1.6e-3, 1.6e-3, 1.6e-3]}}";
 
-struct Trace {
-  std::vector<double> t;
-  std::vector<Vector3> tip;
-  std::vector<Energy> energy;
-  long iterations = 0;
-  double wall = 0.0;
-};
-
-/// `steps` steps of dt from t = 0, each required to converge.
-Trace run(Stepper& s, double dt, long steps) {
-  Trace r;
-  r.t.push_back(0.0);
-  r.tip.push_back(s.tip_position());
-  r.energy.push_back(s.energy());
-  const auto start = std::chrono::steady_clock::now();
-  for (long i = 0; i < steps; ++i) {
-    const auto status = s.step(i * dt, dt);
-    BOOST_REQUIRE_MESSAGE(status.ok, "step " << i << " (dt = " << dt << "): " << status.reason);
-    r.iterations += status.iterations;
-    r.t.push_back((i + 1) * dt);
-    r.tip.push_back(s.tip_position());
-    r.energy.push_back(s.energy());
-  }
-  r.wall = seconds_since(start);
-  return r;
-}
-
-double ledger_drift(const std::vector<Energy>& e) {
-  double d = 0.0;
-  for (const auto& x : e) d = std::max(d, std::abs(x.total() - e.front().total()));
-  return d;
-}
-
-/// The statics tip: rkmk-rk4 at N = 401 (dynamics_support.hpp).
-Vector3 rk4_tip(const scene::Scene& s) { return static_tip(s, "rkmk-rk4", 401, 1e-12); }
+using Trace = StepTrace;
 
 }  // namespace
 
@@ -162,14 +128,14 @@ BOOST_AUTO_TEST_CASE(every_scheme_settles_to_the_statics) {
       "{E: 5.0e7, poisson: 0.5, rho: 1500, viscosity: 300}, input: 1.0, "
       "law: {type: linear, gain: 0.2, stiffness: 0.5}}\n";
   const auto s = actuated_scene(loads, m, 300.0);
-  const Vector3 tip = rk4_tip(s);
+  const Vector3 tip = static_tip(s, "rkmk-rk4", 401, 1e-12);
   BOOST_TEST_MESSAGE("static tip " << tip.transpose());
   BOOST_TEST(tip.x() < -0.002);  // the muscle at x < 0 contracts and bends the rod towards -x
   const auto P = DynamicProblem::from_scene(s);
   auto settle = [&](const std::string& scheme, int nodes, double dt) {
     auto st = make_scheme(scheme, P, nodes, straight(P, nodes), 1e-10, 1e-8);
     const long steps = std::lround(2.5 / dt);
-    const Trace r = run(*st, dt, steps);
+    const Trace r = run_steps(*st, dt, steps);
     const auto n = r.tip.size();
     const Vector3 mean = 0.5 * (r.tip[n - 1] + r.tip[n - 2]);
     const double speed = (r.tip[n - 1] - r.tip[n - 2]).norm() / dt;
@@ -298,9 +264,8 @@ BOOST_AUTO_TEST_CASE(ledger_closes_with_a_muscle_input_schedule) {
   for (const std::string scheme : {"implicit-midpoint-collocation", "ida", "variational"}) {
     auto st = make_scheme(scheme, P, nodes, straight(P, nodes), 1e-10, 1e-9);
     const double h = scheme == "variational" ? solvers::dynamics::auto_time_step(P, scheme, nodes) : dt;
-    const Trace r = run(*st, h, std::lround(0.4 / h));
-    double work = 0.0;
-    for (const auto& e : r.energy) work = std::max(work, std::abs(e.work_in));
+    const Trace r = run_steps(*st, h, std::lround(0.4 / h));
+    const double work = max_abs_work_in(r.energy);
     const double drift = ledger_drift(r.energy);
     BOOST_TEST_MESSAGE(scheme << ": max |work_in| " << work << " J, ledger drift " << drift
                        << " J = " << drift / work << " of it; dissipated "
@@ -327,7 +292,7 @@ BOOST_AUTO_TEST_CASE(undamped_constant_input_keeps_its_energy) {
     const bool variational = scheme == "variational";
     const double dt = variational ? 1e-4 : 2e-3;
     const long steps = std::lround(4.0 / dt);
-    const Trace r = run(*st, dt, steps);
+    const Trace r = run_steps(*st, dt, steps);
     double first = 0.0, second = 0.0, work = 0.0;
     for (long i = 0; i <= steps; ++i) {
       const double d = std::abs(r.energy[i].total() - r.energy[0].total());
@@ -362,7 +327,7 @@ BOOST_AUTO_TEST_CASE(schemes_follow_ida) {
     std::vector<double> err;
     for (const int k : {50, 100, 200}) {
       auto st = make_scheme("implicit-midpoint-collocation", P, 11, straight(P, 11), 1e-12);
-      run(*st, t_end / k, k);
+      run_steps(*st, t_end / k, k);
       err.push_back((st->tip_position() - ref).norm());
       BOOST_TEST_MESSAGE("collocation dt = " << t_end / k << ": |tip - ida| = " << err.back() << " m");
     }
@@ -382,7 +347,7 @@ BOOST_AUTO_TEST_CASE(schemes_follow_ida) {
     std::vector<double> err;
     for (const double dt : {2e-5, 1e-5}) {
       auto st = make_scheme("variational", P, 11, straight(P, 11));
-      run(*st, dt, std::lround(0.05 / dt));
+      run_steps(*st, dt, std::lround(0.05 / dt));
       err.push_back((st->tip_position() - ida->tip_position()).norm());
       BOOST_TEST_MESSAGE("variational dt = " << dt << ": |tip - ida| = " << err.back() << " m");
     }
@@ -405,7 +370,7 @@ BOOST_AUTO_TEST_CASE(schemes_follow_ida) {
     std::vector<double> d;
     for (const int n : {11, 21, 41}) {
       auto st = make_scheme(scheme, P, n, straight(P, n));
-      const Trace r = run(*st, dt, steps);
+      const Trace r = run_steps(*st, dt, steps);
       double worst = 0.0;
       for (long i = 0; i <= steps; ++i) worst = std::max(worst, (r.tip[i] - ref[i]).norm());
       d.push_back(worst);

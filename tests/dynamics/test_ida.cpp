@@ -70,28 +70,9 @@ actuators:
                                     "ida-all-loads.yaml");
 }
 
-/// Runs `stepper` to t_end in steps of dt, recording the energy after every step.
+/// Runs `stepper` to t_end in steps of dt (run_steps), the energy after every step.
 std::vector<Energy> run(Stepper& stepper, double dt, double t_end) {
-  std::vector<Energy> e{stepper.energy()};
-  const long steps = std::lround(t_end / dt);
-  for (long i = 0; i < steps; ++i) {
-    const auto status = stepper.step(i * dt, dt);
-    BOOST_REQUIRE_MESSAGE(status.ok, status.reason);
-    e.push_back(stepper.energy());
-  }
-  return e;
-}
-
-double max_abs_gravity(const std::vector<Energy>& e) {
-  double m = 0.0;
-  for (const auto& x : e) m = std::max(m, std::abs(x.gravity));
-  return m;
-}
-
-double ledger_drift(const std::vector<Energy>& e) {
-  double d = 0.0;
-  for (const auto& x : e) d = std::max(d, std::abs(x.total() - e.front().total()));
-  return d;
+  return run_steps(stepper, dt, std::lround(t_end / dt)).energy;
 }
 
 }  // namespace
@@ -183,8 +164,7 @@ BOOST_AUTO_TEST_CASE(every_input_and_loss_is_in_the_ledger) {
   auto ida = solvers::dynamics::make_ida(P, IdaOptions{kNodes}, straight(P, kNodes));
   const auto e = run(*ida, 1e-3, 0.1);
   const double wall = seconds_since(start);
-  double scale = max_abs_gravity(e);
-  for (const auto& x : e) scale = std::max(scale, std::abs(x.work_in));
+  const double scale = std::max(max_abs_gravity(e), max_abs_work_in(e));
   const double drift = ledger_drift(e);
   BOOST_TEST_MESSAGE("all loads, N = 10, 0.1 s: work_in " << e.back().work_in << " J, dissipated "
                      << e.back().dissipated << " J, ledger drift " << drift << " J ("

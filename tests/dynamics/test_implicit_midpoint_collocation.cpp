@@ -73,18 +73,6 @@ Run run(Stepper& stepper, double dt, long steps) {
   return r;
 }
 
-double max_abs_gravity(const std::vector<Energy>& e) {
-  double m = 0.0;
-  for (const auto& x : e) m = std::max(m, std::abs(x.gravity));
-  return m;
-}
-
-double ledger_drift(const std::vector<Energy>& e) {
-  double d = 0.0;
-  for (const auto& x : e) d = std::max(d, std::abs(x.total() - e.front().total()));
-  return d;
-}
-
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(no_lower_time_step_bound) {

@@ -48,27 +48,9 @@ std::unique_ptr<Stepper> staggered(const std::string& scheme, const DynamicProbl
   return d::make_bdf_alpha(P, o, initial);
 }
 
-/// Steps to t_end; the tip after every step and the energies.
-struct Run {
-  std::vector<Vector3> tip;
-  std::vector<Energy> energy;
-};
-Run run(Stepper& s, double dt, double t_end) {
-  Run r{{s.tip_position()}, {s.energy()}};
-  const long steps = std::lround(t_end / dt);
-  for (long i = 0; i < steps; ++i) {
-    const auto status = s.step(i * dt, dt);
-    BOOST_REQUIRE_MESSAGE(status.ok, status.reason);
-    r.tip.push_back(s.tip_position());
-    r.energy.push_back(s.energy());
-  }
-  return r;
-}
-
-double max_ledger_drift(const std::vector<Energy>& e) {
-  double d = 0.0;
-  for (const auto& x : e) d = std::max(d, std::abs(x.total() - e.front().total()));
-  return d;
+/// Steps to t_end (run_steps): the tip after every step and the energies.
+StepTrace run(Stepper& s, double dt, double t_end) {
+  return run_steps(s, dt, std::lround(t_end / dt));
 }
 
 BOOST_AUTO_TEST_CASE(dexp_transpose_inverts_the_discrete_stress) {
@@ -196,9 +178,8 @@ BOOST_AUTO_TEST_CASE(damped_ledger_closes_with_a_cable) {
     for (double dt : {4e-3, 2e-3}) {
       auto st = staggered("implicit-midpoint", P, 20, straight(P, 20));
       const auto r = run(*st, dt, 0.2);
-      double work = 0.0;
-      for (const auto& e : r.energy) work = std::max(work, std::abs(e.work_in));
-      rel[k++] = max_ledger_drift(r.energy) / work;
+      const double work = max_abs_work_in(r.energy);
+      rel[k++] = ledger_drift(r.energy) / work;
       BOOST_TEST_MESSAGE(model << ", dt = " << dt << ": ledger drift " << rel[k - 1]
                                << " of max |work_in| = " << work << " J");
     }
@@ -406,9 +387,8 @@ BOOST_AUTO_TEST_CASE(damped_ledger_closes_with_a_muscle_and_length_control) {
     for (double dt : {4e-3, 2e-3}) {
       auto st = staggered("implicit-midpoint", P, 11, straight(P, 11));
       const auto r = run(*st, dt, 0.4);
-      double work = 0.0;
-      for (const auto& e : r.energy) work = std::max(work, std::abs(e.work_in));
-      rel[k++] = max_ledger_drift(r.energy) / work;
+      const double work = max_abs_work_in(r.energy);
+      rel[k++] = ledger_drift(r.energy) / work;
       BOOST_TEST_MESSAGE((P.has_muscles() ? "muscle" : "cable") << ", dt = " << dt
                          << ": ledger drift " << rel[k - 1] << " of max |work_in| = " << work << " J");
       BOOST_TEST(work > 1e-6);

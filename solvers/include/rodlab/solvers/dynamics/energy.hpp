@@ -42,4 +42,12 @@ double embedded_strain_energy_nodes(const DynamicProblem& problem,
 double embedded_gravity_energy(const DynamicProblem& problem, std::span<const SE3> g_nodes,
                                double ds);
 
+/// Kinetic, strain and gravity energies of a state on the staggered grid (node poses g and
+/// velocities eta, segment strains xi; `ida`, collocation, the staggered shooting march), with
+/// the embedded muscles when `inertia` (DynamicProblem::node_inertia) is given; dissipated and
+/// work_in are left 0.
+Energy staggered_energy(const DynamicProblem& problem, std::span<const SE3> g,
+                        std::span<const Vector6> eta, std::span<const Vector6> xi, double ds,
+                        std::span<const lie::Matrix6> inertia = {});
+
 }  // namespace rodlab::solvers::dynamics
