@@ -10,11 +10,11 @@
 
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/rod/energies.hpp"
-#include "rodlab/solvers/dynamics/bdf_alpha.hpp"
-#include "rodlab/solvers/dynamics/implicit_midpoint.hpp"
-#include "rodlab/solvers/dynamics/implicit_midpoint_collocation.hpp"
+#include "rodlab/solvers/dynamics/shooting/bdf_alpha.hpp"
+#include "rodlab/solvers/dynamics/shooting/implicit_midpoint.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/implicit_midpoint_collocation.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
-#include "rodlab/solvers/dynamics/variational.hpp"
+#include "rodlab/solvers/dynamics/variational/variational.hpp"
 
 namespace {
 
@@ -53,7 +53,7 @@ void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt
     if (scheme == "implicit-midpoint-collocation")
       return make_implicit_midpoint_collocation(problem, {.nodes = n}, initial);
     if (scheme == "bdf-alpha")  // Till's alpha = -0.2
-      return make_bdf_alpha(problem, {n, 1e-10, 50, kDefaultBdfAlpha, grid}, initial);
+      return make_bdf_alpha(problem, {{n, 1e-10, 50, grid}, kDefaultBdfAlpha}, initial);
     return scheme == "variational" ? make_variational(problem, {n, 1e-12, 20}, initial)
                                    : make_implicit_midpoint(problem, {n, 1e-10, 50, grid}, initial);
   };

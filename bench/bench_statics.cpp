@@ -53,7 +53,7 @@ BENCHMARK(one_integration)->Arg(100);
 
 const bool registered = [] {
   for (const auto& s : solvers::all_schemes()) {
-    if (s.problem != solvers::Problem::statics || !s.arrives.empty()) continue;
+    if (s.problem != solvers::Problem::statics) continue;
     for (auto kind : {rod::ModelKind::cosserat, rod::ModelKind::kirchhoff}) {
       const std::string name = "static_solve/" + std::string(s.name) +
                                (kind == rod::ModelKind::kirchhoff ? "/kirchhoff" : "/cosserat");

@@ -1,21 +1,15 @@
 // rodlab dynamic SCENE [options]: time simulation.
 #include <array>
 
-#include "rodlab/solvers/dynamics/time_step.hpp"
 
-#include "availability.hpp"
 #include "command.hpp"
 #include "common_options.hpp"
 #include "result_output.hpp"
-#include "solve.hpp"
 
 namespace rodlab::cli {
 namespace {
 
 constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
-constexpr std::array<OptionSpec, 12> kOptions{
-    kSchemeOption,  kNodesOption, kTolOption,  kDtOption,   kTEndOption,  kOutputEveryOption,
-    kOutFileOption, kSetOption,   kRtolOption, kAtolOption, kAlphaOption, kGridOption};
 
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);
@@ -23,18 +17,17 @@ int run(const Invocation& inv) {
   reader.finish();
   const scene::Scene scene = load_checked_scene(options);
   DynamicRun run = resolve_dynamic_run(options, scene, "dynamic");
-  require_available(run.scheme);
-
-  if (run.dt.automatic) {
-    const auto problem = solvers::dynamics::DynamicProblem::from_scene(scene);
-    run.dt = TimeStep{false, solvers::dynamics::auto_time_step(problem, run.scheme.name, run.nodes)};
-  }
-  return deliver(solve_dynamic(scene, run), options.out);
+  resolve_time_step(run, scene);
+  return deliver(solvers::dynamics::solve_dynamic(scene, run.solve), options.out);
 }
 
 }  // namespace
 
 const Command& dynamic_command() {
+  // A local static: the scheme options' help lines are made at start-up in another file.
+  static const std::array<OptionSpec, 12> options{
+      kSchemeOption,  kNodesOption, kTolOption,  kDtOption,   kTEndOption,  kOutputEveryOption,
+      kOutFileOption, kSetOption,   kRtolOption, kAtolOption, kAlphaOption, kGridOption};
   static const Command command{
       "dynamic",
       "SCENE [options]",
@@ -53,7 +46,7 @@ const Command& dynamic_command() {
       "file is still written, with \"converged\": false and the reason); 2 bad input or usage\n"
       "(nothing is written).\n",
       kPositionals,
-      kOptions,
+      options,
       &run};
   return command;
 }

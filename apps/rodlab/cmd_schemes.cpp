@@ -13,14 +13,12 @@ namespace {
 
 int run(const Invocation&) {
   TextTable table;
-  table.add_row({"name", "problem", "order", "type", "reference", "status", "method"});
+  table.add_row({"name", "problem", "order", "type", "reference", "method"});
   table.add_rule();
   for (const auto& s : solvers::all_schemes()) {
-    const std::string status =
-        s.arrives.empty() ? std::string("available") : "arrives with " + std::string(s.arrives);
     table.add_row({std::string(s.name), std::string(solvers::to_string(s.problem)),
                    std::string(s.order), s.implicit ? "implicit" : "explicit",
-                   s.reference ? "reference" : "", status, std::string(s.method)});
+                   s.reference ? "reference" : "", std::string(s.method)});
   }
   std::cout << table.render();
   return kSolved;
@@ -32,12 +30,11 @@ const Command& schemes_command() {
   static const Command command{
       "schemes",
       "",
-      "list the schemes: problem, order, explicit/implicit, status",
+      "list the schemes: problem, order, explicit/implicit, method",
       "Lists every scheme: its name (for --scheme), the problem it solves (statics: the\n"
       "boundary-value problem in s; dynamics: the initial-boundary-value problem in s and t),\n"
       "its order, whether it is implicit in its marching direction, whether it is the SUNDIALS\n"
-      "reference of its class, whether it is available in this build (or which issue brings\n"
-      "it), and the method in one line.\n"
+      "reference of its class, and the method in one line.\n"
       "\n"
       "Exit status: 0.\n",
       {},

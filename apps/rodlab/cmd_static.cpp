@@ -1,11 +1,9 @@
 // rodlab static SCENE [options]: static equilibrium.
 #include <array>
 
-#include "availability.hpp"
 #include "command.hpp"
 #include "common_options.hpp"
 #include "result_output.hpp"
-#include "solve.hpp"
 
 namespace rodlab::cli {
 namespace {
@@ -20,9 +18,7 @@ int run(const Invocation& inv) {
   reader.finish();
   const scene::Scene scene = load_checked_scene(options);
   const StaticRun run = resolve_static_run(options, scene, "static");
-  require_available(run.scheme);
-
-  return deliver(solve_static(scene, run), options.out);
+  return deliver(solvers::statics::solve_static(scene, run.solve), options.out);
 }
 
 }  // namespace

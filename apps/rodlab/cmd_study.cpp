@@ -10,7 +10,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "availability.hpp"
 #include "command.hpp"
 #include "common_options.hpp"
 #include "errors.hpp"
@@ -39,7 +38,7 @@ constexpr OptionSpec kStudyTolOption{
 constexpr std::array<std::string_view, 2> kRefinements{"time", "joint"};
 constexpr std::array<OptionSpec, 13> kOptions{
     OptionSpec{"--schemes", "A,B,...",
-               "schemes to compare, comma-separated (one problem class); default: all available"},
+               "schemes to compare, comma-separated (one problem class); default: all of the problem class"},
     OptionSpec{"--nodes", "N1,N2,...", "node counts, comma-separated integers >= 2"},
     OptionSpec{"--dt", "X1,X2,...", "time steps > 0, comma-separated (dynamics studies)"},
     OptionSpec{"--t-end", "T", "length of the dynamics runs [s]; default: dynamics.t_end"},
@@ -131,16 +130,13 @@ void check_kind_options(OptionReader& reader, const std::string& kind) {
     reader.problem("--tol: `rodlab study recommend` needs the tip error to reach, e.g. --tol 1e-6");
 }
 
-/// The schemes of the study: --schemes (each must be available), else every available one.
+/// The schemes of the study: --schemes, else every scheme of the problem class.
 std::vector<solvers::SchemeInfo> chosen_schemes(const OptionReader& reader, Problem problem) {
   const auto text = reader.text("--schemes");
   if (!text) return study::available_schemes(problem);
   std::vector<solvers::SchemeInfo> out;
   for (const auto& name : split_list(*text)) {
     const auto scheme = *solvers::find_scheme(name);
-    if (!scheme.arrives.empty())
-      throw NotAvailable("--schemes: '" + name + "' is not available yet; it arrives with " +
-                         std::string(scheme.arrives));
     bool seen = false;
     for (const auto& s : out) seen = seen || s.name == scheme.name;
     if (!seen) out.push_back(scheme);
@@ -309,19 +305,14 @@ int run(const Invocation& inv) {
   settings.scene = scene;
   settings.problem = problem.value_or(Problem::statics);
   settings.schemes = chosen_schemes(reader, settings.problem);
-  if (const auto ref = inv.args.value("--reference"); ref && !study::scheme_available(*ref))
-    throw NotAvailable("--reference: '" + *ref + "' is not available yet; it arrives with " +
-                       std::string(solvers::find_scheme(*ref)->arrives));
   settings.reference = inv.args.value("--reference");
   if (settings.schemes.empty())
-    throw UsageError("--schemes: no available " +
+    throw UsageError("--schemes: no " +
                      std::string(solvers::to_string(settings.problem)) + " scheme to study");
   if (nodes) settings.nodes = *nodes;
   if (dts) settings.dts = *dts;
   if (inv.args.value("--refine") == "joint") {
     settings.refine = study::Refinement::joint;
-    if (!study::scheme_available("ida"))
-      throw NotAvailable("--refine joint: its reference, ida, is not available yet");
   }
   if (moduli) settings.moduli = *moduli;
   const bool recommend = kind == "recommend";
@@ -383,7 +374,7 @@ const Command& study_command() {
       "                   error in m) within --budget-ms; reuses DIR's work-precision data when\n"
       "                   it was measured with the same settings (DIR/recommendation.json)\n"
       "A study is a statics study unless its schemes, its reference, --dt or --t-end make it a\n"
-      "dynamics one (stability always is). Without --schemes, every available scheme of the\n"
+      "dynamics one (stability always is). Without --schemes, every scheme of the\n"
       "class takes part. The options and the scene are checked before anything runs.\n"
       "--jobs N runs N cases at once; under `mpirun -n K` the cases are split across the ranks\n"
       "and rank 0 writes the merged outputs (docs/studies.md).\n"

@@ -14,7 +14,6 @@
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/statics/workspace.hpp"
 
-#include "availability.hpp"
 #include "command.hpp"
 #include "common_options.hpp"
 #include "errors.hpp"
@@ -71,32 +70,13 @@ int run(const Invocation& inv) {
     ws.hold_time = hold.value_or(first_period(scene));
     SolveOptions timed = options;  // the run lasts holds x hold, whatever dynamics.t_end says
     timed.t_end = ws.holds * ws.hold_time;
-    const DynamicRun run = resolve_dynamic_run(timed, scene, "workspace");
-    require_available(run.scheme);
-    ws.solve.scheme = std::string(run.scheme.name);
-    ws.solve.nodes = run.nodes;
-    ws.solve.tol = run.tol;
-    ws.solve.max_iterations = run.max_iterations;
-    ws.solve.alpha = run.alpha;
-    ws.solve.grid = run.grid;
-    ws.solve.initial = scene.dynamics ? scene.dynamics->initial : scene::Initial::straight;
-    ws.solve.dt = run.dt.automatic
-                      ? solvers::dynamics::auto_time_step(
-                            solvers::dynamics::DynamicProblem::from_scene(scene), ws.solve.scheme,
-                            run.nodes)
-                      : run.dt.value;
-    ws.solve.rtol = run.rtol;
-    ws.solve.atol = run.atol;
+    DynamicRun run = resolve_dynamic_run(timed, scene, "workspace");
+    resolve_time_step(run, scene);
+    ws.solve = run.solve;  // t_end and output_every: set by the workspace from the holds
     result = solvers::dynamics::sample_dynamic_workspace(scene, ws);
   } else {
     const StaticRun run = resolve_static_run(options, scene, "workspace");
-    require_available(run.scheme);
-    solvers::statics::StaticSolveOptions solve;
-    solve.scheme = std::string(run.scheme.name);
-    solve.nodes = run.nodes;
-    solve.tol = run.tol;
-    solve.max_iterations = run.max_iterations;
-    result = solvers::statics::sample_workspace(scene, solve, static_cast<int>(*samples));
+    result = solvers::statics::sample_workspace(scene, run.solve, static_cast<int>(*samples));
   }
   if (options.out) io::write_result(*options.out, result);
   std::cout << "scene            " << result.scene << "\n"

@@ -4,6 +4,7 @@
 #include <system_error>
 
 #include "rodlab/io/result_writer.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
 
 #include "errors.hpp"
 #include "format.hpp"
@@ -11,6 +12,29 @@
 namespace rodlab::cli {
 namespace fs = std::filesystem;
 using solvers::Problem;
+
+namespace {
+const solvers::dynamics::DynamicSolveOptions kDefaults;
+const std::string kRtolHelp =
+    "ida: relative tolerance of the time integration > 0; default: " + format_number(kDefaults.rtol);
+const std::string kAtolHelp =
+    "ida: absolute tolerance > 0 (scaled per component); default: " + format_number(kDefaults.atol);
+const std::string kAlphaHelp =
+    "bdf-alpha: alpha in [-0.5, 0] (0 BDF2, -0.5 trapezoidal); default: solver.alpha, else " +
+    format_number(kDefaults.alpha);
+const std::string kGridHelp =
+    "implicit-midpoint, bdf-alpha: the shooting march's spatial grid, euler (explicit Euler RKMK "
+    "on the nodes, the thesis) or staggered (the grid of variational and ida, second order); "
+    "default: solver.grid, else " +
+    std::string(solvers::dynamics::shooting_grid_name(kDefaults.grid));
+}  // namespace
+
+// Defined after their help lines (same translation unit: initialised in this order); other
+// files use them only from functions, after static initialisation.
+const OptionSpec kRtolOption{"--rtol", "X", kRtolHelp};
+const OptionSpec kAtolOption{"--atol", "X", kAtolHelp};
+const OptionSpec kAlphaOption{"--alpha", "X", kAlphaHelp};
+const OptionSpec kGridOption{"--grid", "euler|staggered", kGridHelp};
 
 std::optional<solvers::SchemeInfo> fitting_scheme(std::string_view name, Problem problem,
                                                   std::string_view command, std::string& why) {
@@ -151,8 +175,12 @@ StaticRun resolve_static_run(const SolveOptions& options, const scene::Scene& sc
                              std::string_view command) {
   StaticRun run{chosen_scheme(options, scene, scene.solver.scheme, "solver.scheme",
                               Problem::statics, command),
-                options.nodes.value_or(scene.solver.nodes), options.tol.value_or(scene.solver.tol),
-                scene.solver.max_iterations, options.time.value_or(0.0)};
+                {}};
+  run.solve.scheme = std::string(run.scheme.name);
+  run.solve.nodes = options.nodes.value_or(scene.solver.nodes);
+  run.solve.tol = options.tol.value_or(scene.solver.tol);
+  run.solve.max_iterations = scene.solver.max_iterations;
+  run.solve.time = options.time.value_or(0.0);
   return run;
 }
 
@@ -160,37 +188,47 @@ std::string scene_dynamics_scheme(const scene::Scene& scene) {
   if (scene.dynamics && scene.dynamics->scheme) return *scene.dynamics->scheme;
   const auto solver_scheme = solvers::find_scheme(scene.solver.scheme);
   if (solver_scheme && solver_scheme->problem == Problem::dynamics) return scene.solver.scheme;
-  return std::string(kDefaultDynamicsScheme);
+  return solvers::dynamics::DynamicSolveOptions{}.scheme;
 }
 
 DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& scene,
                                std::string_view command) {
   const scene::Dynamics dynamics = scene.dynamics.value_or(scene::Dynamics{});
-  DynamicRun run;
-  run.scheme = chosen_scheme(options, scene, scene_dynamics_scheme(scene), "dynamics.scheme",
-                             Problem::dynamics, command);
-  run.nodes = options.nodes.value_or(scene.solver.nodes);
-  run.tol = options.tol.value_or(scene.solver.tol);
-  run.max_iterations = scene.solver.max_iterations;
+  DynamicRun run{chosen_scheme(options, scene, scene_dynamics_scheme(scene), "dynamics.scheme",
+                               Problem::dynamics, command),
+                 true,
+                 {}};
+  auto& solve = run.solve;
+  solve.scheme = std::string(run.scheme.name);
+  solve.nodes = options.nodes.value_or(scene.solver.nodes);
+  solve.tol = options.tol.value_or(scene.solver.tol);
+  solve.max_iterations = scene.solver.max_iterations;
   const auto t_end = options.t_end ? options.t_end : dynamics.t_end;
   if (!t_end)
     throw UsageError("--t-end: no end time; give --t-end T or set dynamics.t_end in " +
                      options.scene_path);
-  run.t_end = *t_end;
-  if (options.dt)
-    run.dt = *options.dt;
-  else
-    run.dt = dynamics.dt ? TimeStep{false, *dynamics.dt} : TimeStep{};
-  if (!run.dt.automatic && run.dt.value > run.t_end)
-    throw UsageError("--dt: the time step " + format_number(run.dt.value) +
-                     " s exceeds the end time " + format_number(run.t_end) + " s");
-  run.output_every = options.output_every.value_or(dynamics.output_every);
-  run.rtol = options.rtol.value_or(run.rtol);
-  run.atol = options.atol.value_or(run.atol);
-  run.alpha = options.alpha.value_or(scene.solver.alpha.value_or(run.alpha));
-  run.grid = *solvers::dynamics::shooting_grid_from_name(
-      options.grid.value_or(scene.solver.grid.value_or("euler")));
+  solve.t_end = *t_end;
+  const TimeStep dt = options.dt ? *options.dt : dynamics.dt ? TimeStep{false, *dynamics.dt} : TimeStep{};
+  run.automatic_dt = dt.automatic;
+  solve.dt = dt.value;
+  if (!dt.automatic && dt.value > solve.t_end)
+    throw UsageError("--dt: the time step " + format_number(dt.value) +
+                     " s exceeds the end time " + format_number(solve.t_end) + " s");
+  solve.output_every = options.output_every.value_or(dynamics.output_every);
+  solve.rtol = options.rtol.value_or(solve.rtol);
+  solve.atol = options.atol.value_or(solve.atol);
+  solve.alpha = options.alpha.value_or(scene.solver.alpha.value_or(solve.alpha));
+  const auto grid = options.grid ? options.grid : scene.solver.grid;
+  if (grid) solve.grid = *solvers::dynamics::shooting_grid_from_name(*grid);
+  solve.initial = dynamics.initial;
   return run;
+}
+
+void resolve_time_step(DynamicRun& run, const scene::Scene& scene) {
+  if (!run.automatic_dt) return;
+  const auto problem = solvers::dynamics::DynamicProblem::from_scene(scene);
+  run.solve.dt = solvers::dynamics::auto_time_step(problem, run.solve.scheme, run.solve.nodes);
+  run.automatic_dt = false;
 }
 
 }  // namespace rodlab::cli

@@ -11,8 +11,9 @@
 
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/scene/scene.hpp"
-#include "rodlab/solvers/dynamics/shooting_stepper.hpp"
+#include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/schemes.hpp"
+#include "rodlab/solvers/statics/solve_static.hpp"
 
 #include "options.hpp"
 
@@ -33,26 +34,17 @@ inline constexpr OptionSpec kDtOption{
 inline constexpr OptionSpec kTimeOption{
     "--time", "T", "time >= 0 at which the scene's schedules are evaluated; default: 0"};
 inline constexpr OptionSpec kTEndOption{"--t-end", "T", "end time > 0; default: dynamics.t_end"};
-inline constexpr OptionSpec kRtolOption{
-    "--rtol", "X", "ida: relative tolerance of the time integration > 0; default: 1e-10"};
-inline constexpr OptionSpec kAtolOption{
-    "--atol", "X", "ida: absolute tolerance > 0 (scaled per component); default: 1e-10"};
-inline constexpr OptionSpec kAlphaOption{
-    "--alpha", "X",
-    "bdf-alpha: alpha in [-0.5, 0] (0 BDF2, -0.5 trapezoidal); default: solver.alpha, else -0.2"};
-inline constexpr OptionSpec kGridOption{
-    "--grid", "euler|staggered",
-    "implicit-midpoint, bdf-alpha: the shooting march's spatial grid, euler (explicit Euler RKMK "
-    "on the nodes, the thesis) or staggered (the grid of variational and ida, second order); "
-    "default: solver.grid, else euler"};
+// The options whose defaults are the solvers' own: their help lines are made from the option
+// structs (DynamicSolveOptions and the schemes' options), so they cannot disagree.
+extern const OptionSpec kRtolOption;   ///< ida: rtol
+extern const OptionSpec kAtolOption;   ///< ida: atol
+extern const OptionSpec kAlphaOption;  ///< bdf-alpha: alpha
+extern const OptionSpec kGridOption;   ///< implicit-midpoint, bdf-alpha: the march's grid
 inline constexpr OptionSpec kOutputEveryOption{
     "--output-every", "K", "record every K-th step, integer >= 1; default: dynamics.output_every"};
 
-/// The dynamics scheme used when neither --scheme, dynamics.scheme nor solver.scheme names one.
-inline constexpr std::string_view kDefaultDynamicsScheme = "variational";
-
 /// The scheme `rodlab dynamic` uses without --scheme: dynamics.scheme, else solver.scheme
-/// when that names a dynamics scheme, else kDefaultDynamicsScheme.
+/// when that names a dynamics scheme, else the solvers' default (DynamicSolveOptions::scheme).
 std::string scene_dynamics_scheme(const scene::Scene& scene);
 
 /// A time step: a value, or automatic (the explicit step (3.44) from rod::characteristics).
@@ -100,26 +92,20 @@ std::optional<std::filesystem::path> read_out_dir(OptionReader& reader);
 /// Loads and checks the scene with the overrides (throws io::SceneError).
 scene::Scene load_checked_scene(const SolveOptions& options);
 
-/// The settings of one run, command line over scene.
+/// The settings of one run, command line over scene over the solvers' defaults: the scheme and
+/// the options the solvers take (each default is written once, in the solvers' option structs).
 struct StaticRun {
   solvers::SchemeInfo scheme;
-  int nodes = 0;
-  double tol = 0.0;
-  int max_iterations = 0;
-  double time = 0.0;
+  solvers::statics::StaticSolveOptions solve;
 };
 struct DynamicRun {
   solvers::SchemeInfo scheme;
-  int nodes = 0;
-  double tol = 0.0;
-  int max_iterations = 0;
-  double t_end = 0.0;
-  TimeStep dt;
-  int output_every = 1;
-  double rtol = 1e-10, atol = 1e-10;  ///< ida's tolerances
-  double alpha = -0.2;                ///< bdf-alpha's parameter (solver.alpha, --alpha)
-  solvers::dynamics::ShootingGrid grid = solvers::dynamics::ShootingGrid::euler;  ///< --grid
+  bool automatic_dt = true;  ///< dt: auto, until resolve_time_step() sets solve.dt
+  solvers::dynamics::DynamicSolveOptions solve;
 };
+
+/// Replaces dt: auto by the scheme's automatic step (solvers::dynamics::auto_time_step).
+void resolve_time_step(DynamicRun& run, const scene::Scene& scene);
 
 /// Combine options and scene; throws io::SceneError when the scene's own scheme does not fit
 /// (and --scheme does not replace it), or UsageError when dynamic lacks an end time.

@@ -20,10 +20,4 @@ class UsageError : public std::runtime_error {
   std::vector<std::string> messages_;
 };
 
-/// The input is fine but the feature it asks for is not implemented yet.
-class NotAvailable : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
 }  // namespace rodlab::cli

@@ -52,9 +52,6 @@ int run_command(const Command& command, std::span<const std::string> args,
     std::cerr << "Run 'rodlab " << command.name << " --help' for the options.\n";
   } catch (const io::SceneError& e) {
     for (const auto& d : e.diagnostics()) std::cerr << d.to_string() << '\n';
-  } catch (const NotAvailable& e) {
-    std::cerr << prefix << e.what() << '\n'
-              << prefix << "the input was checked and is valid; nothing was written\n";
   } catch (const std::invalid_argument& e) {  // bad values the scene checks did not catch
     std::cerr << prefix << "error: " << e.what() << '\n';
   } catch (const std::logic_error& e) {  // a broken invariant: a bug, not the user's input

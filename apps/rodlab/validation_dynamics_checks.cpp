@@ -47,7 +47,7 @@ constexpr double kRhoA = 1000.0 * std::numbers::pi * 1e-4 / 4.0;  // rho pi D^2 
 
 bool available(std::string_view scheme) {
   const auto s = solvers::find_scheme(scheme);
-  return s && s->arrives.empty();
+  return s.has_value();
 }
 
 /// The Table 2.1 rod with YAML under `loads:` and `tip: free:`; Kelvin-Voigt viscosity alpha.

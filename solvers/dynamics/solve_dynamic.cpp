@@ -9,12 +9,7 @@
 #include <vector>
 
 #include "rodlab/rod/energies.hpp"
-#include "rodlab/solvers/schemes.hpp"
-#include "rodlab/solvers/dynamics/bdf_alpha.hpp"
-#include "rodlab/solvers/dynamics/ida_reference.hpp"
-#include "rodlab/solvers/dynamics/implicit_midpoint.hpp"
-#include "rodlab/solvers/dynamics/implicit_midpoint_collocation.hpp"
-#include "rodlab/solvers/dynamics/variational.hpp"
+#include "rodlab/solvers/registry.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
 namespace rodlab::solvers::dynamics {
@@ -80,39 +75,6 @@ RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem
   return state;
 }
 
-std::unique_ptr<Stepper> make_stepper(const DynamicProblem& problem,
-                                      const DynamicSolveOptions& options, const RestState& initial) {
-  if (options.scheme == "variational")
-    return make_variational(problem, {options.nodes, std::min(options.tol, 1e-12), 20}, initial);
-  if (options.scheme == "implicit-midpoint")
-    return make_implicit_midpoint(
-        problem, {options.nodes, options.tol, options.max_iterations, options.grid}, initial);
-  if (options.scheme == "bdf-alpha")
-    return make_bdf_alpha(problem,
-                          {options.nodes, options.tol, options.max_iterations, options.alpha,
-                           options.grid},
-                          initial);
-  if (options.scheme == "ida") {
-    IdaOptions io;
-    io.nodes = options.nodes;
-    io.rtol = options.rtol;
-    io.atol = options.atol;
-    return make_ida(problem, io, initial);
-  }
-  if (options.scheme == "implicit-midpoint-collocation") {
-    ImplicitMidpointCollocationOptions co;
-    co.nodes = options.nodes;
-    co.tol = options.tol;
-    co.max_iterations = options.max_iterations;
-    return make_implicit_midpoint_collocation(problem, co, initial);
-  }
-  const auto info = find_scheme(options.scheme);
-  if (!info || info->problem != Problem::dynamics)
-    throw std::invalid_argument("unknown dynamics scheme '" + options.scheme + "' (valid: " +
-                                scheme_names(Problem::dynamics) + ")");
-  throw std::invalid_argument("scheme '" + options.scheme + "' is not available yet");
-}
-
 /// An energy scale the run can legitimately reach: the strain energy of a quarter-circle bend,
 /// plus what gravity and the inputs have exchanged so far, plus the initial energy.
 double energy_budget(const DynamicProblem& problem, const Energy& e0, const Energy& e) {
@@ -131,6 +93,7 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   if (!(options.t_end > 0.0) || !std::isfinite(options.t_end))
     throw std::invalid_argument("t_end must be > 0");
   if (options.output_every < 1) throw std::invalid_argument("output_every must be >= 1");
+  const SchemeInfo& scheme = scheme_for(options.scheme, Problem::dynamics);
   const DynamicProblem problem = DynamicProblem::from_scene(scene);
 
   result::DynamicResult out;
@@ -144,7 +107,8 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   const auto start = std::chrono::steady_clock::now();
   std::string failure;
   const RestState initial = initial_state(scene, problem, options, failure);
-  const std::unique_ptr<Stepper> stepper = make_stepper(problem, options, initial);
+  const std::unique_ptr<Stepper> stepper =
+      registry_entry(scheme.id).make_stepper(problem, options, initial);
 
   const Energy e0 = stepper->energy();
   auto record = [&](double t) {

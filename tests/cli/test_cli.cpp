@@ -48,12 +48,6 @@ std::string g6(double v) {
   return buffer;
 }
 
-/// The statics scheme of the example scene, from the scheme catalogue.
-rodlab::solvers::SchemeInfo scene_scheme() {
-  const auto scene = rodlab::io::load_scene(kScene);
-  return *rodlab::solvers::find_scheme(scene.solver.scheme);
-}
-
 }  // namespace
 
 // --- usage ----------------------------------------------------------------------------------
@@ -424,16 +418,7 @@ BOOST_AUTO_TEST_CASE(schemes_lists_all_twelve) {
   BOOST_TEST(contains(r.out, "explicit"));
 }
 
-// --- subcommands that are not there yet -----------------------------------------------------
-
-BOOST_AUTO_TEST_CASE(static_says_when_its_scheme_is_not_available_and_writes_nothing) {
-  const auto scheme = scene_scheme();
-  if (scheme.arrives.empty()) return;  // the solver exists: nothing to check here
-  Sandbox box;
-  expect_bad_input(
-      box, "static " + quote(kScene) + " --out r.json",
-      {"rodlab static: not available yet; it arrives with " + std::string(scheme.arrives)});
-}
+// --- input checked before anything runs -----------------------------------------------------
 
 BOOST_AUTO_TEST_CASE(unfinished_subcommands_check_their_input_first) {
   Sandbox box;

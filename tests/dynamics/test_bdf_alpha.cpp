@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "dynamics_support.hpp"
-#include "rodlab/solvers/dynamics/time_rule.hpp"
+#include "rodlab/solvers/dynamics/shooting/time_rule.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
 namespace {

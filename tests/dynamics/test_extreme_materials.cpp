@@ -47,7 +47,7 @@ void run_every_scheme(const scene::Scene& s) {
   constexpr int kNodes = 12;
   const double T = 200 * solvers::dynamics::auto_time_step(problem, "variational", kNodes);
   for (const auto& info : solvers::all_schemes()) {
-    if (info.problem != solvers::Problem::dynamics || !info.arrives.empty()) continue;
+    if (info.problem != solvers::Problem::dynamics) continue;
     const std::string scheme(info.name);
     solvers::dynamics::DynamicSolveOptions o;
     o.scheme = scheme;

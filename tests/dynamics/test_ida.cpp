@@ -26,8 +26,8 @@
 #include "dynamics_support.hpp"
 #include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
-#include "rodlab/solvers/dynamics/ida_reference.hpp"
-#include "rodlab/solvers/dynamics/variational.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
+#include "rodlab/solvers/dynamics/variational/variational.hpp"
 
 namespace {
 

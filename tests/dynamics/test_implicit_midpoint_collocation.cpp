@@ -26,9 +26,9 @@
 #include "dynamics_support.hpp"
 #include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
-#include "rodlab/solvers/dynamics/ida_reference.hpp"
-#include "rodlab/solvers/dynamics/implicit_midpoint_collocation.hpp"
-#include "rodlab/solvers/dynamics/variational.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/implicit_midpoint_collocation.hpp"
+#include "rodlab/solvers/dynamics/variational/variational.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
 namespace {

@@ -106,15 +106,6 @@ BOOST_AUTO_TEST_CASE(bad_input_exits_2_and_writes_nothing) {
                    {"--dt", "joint"});
   expect_bad_input(box, "study stability " + dyn + " --refine joint --out s",
                    {"--refine", "stability"});
-  // A scheme the catalogue does not have yet, named explicitly.
-  for (const auto& s : rodlab::solvers::all_schemes()) {
-    if (s.arrives.empty()) continue;
-    expect_bad_input(box,
-                     "study convergence " + quote(kDynamicScene) + " --schemes " +
-                         std::string(s.name) + " --out s",
-                     {"--schemes", std::string(s.name), "not available yet"});
-    break;
-  }
 }
 
 // Reference: design orders 2 (explicit midpoint RKMK) and 4 (RK4 Munthe-Kaas); kinsol at N = 324.

@@ -2,39 +2,22 @@
 #include <algorithm>
 #include <array>
 
+#include "rodlab/scene/schemes.hpp"
+
 #include "scene_readers.hpp"
 
 namespace rodlab::io {
 namespace {
 
-// A copy of the catalogue in solvers/common/schemes.cpp (rodlab::io does not link
-// rodlab::solvers); tests/scene/test_scheme_names.cpp keeps the two equal.
-constexpr std::array<SceneSchemeName, 12> kSchemeNames{{
-    {"rkmk-euler-explicit", false},
-    {"rkmk-euler-implicit", false},
-    {"rkmk-midpoint-explicit", false},
-    {"rkmk-midpoint-implicit", false},
-    {"rkmk-rk4", false},
-    {"chebyshev", false},
-    {"kinsol", false},
-    {"variational", true},
-    {"implicit-midpoint", true},
-    {"implicit-midpoint-collocation", true},
-    {"bdf-alpha", true},
-    {"ida", true},
-}};
-
-/// The names of all schemes, or of the dynamics schemes only.
+/// The names of all schemes, or of the dynamics schemes only (rodlab/scene/schemes.hpp).
 std::vector<std::string_view> names(bool dynamics_only) {
   std::vector<std::string_view> out;
-  for (const auto& s : kSchemeNames)
-    if (!dynamics_only || s.dynamics) out.push_back(s.name);
+  for (const auto& s : scene::all_schemes())
+    if (!dynamics_only || s.problem == scene::Problem::dynamics) out.push_back(s.name);
   return out;
 }
 
 }  // namespace
-
-std::span<const SceneSchemeName> scene_scheme_names() { return kSchemeNames; }
 
 namespace detail {
 

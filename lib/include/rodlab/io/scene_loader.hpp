@@ -53,15 +53,4 @@ scene::Scene load_scene(const std::string& path, std::span<const Override> overr
 scene::Scene load_scene_from_string(const std::string& yaml_text, const std::string& source_name,
                                     std::span<const Override> overrides = {});
 
-/// A scheme name that solver.scheme / dynamics.scheme accept. The loader keeps its own copy of
-/// the catalogue in solvers/common/schemes.cpp because rodlab::io links rodlab::core only;
-/// tests/scene/test_scheme_names.cpp checks that the two lists are equal.
-struct SceneSchemeName {
-  std::string_view name;
-  bool dynamics;  ///< a dynamics scheme (else statics)
-};
-
-/// The scheme names the loader accepts, statics first, in the order of the interface spec.
-std::span<const SceneSchemeName> scene_scheme_names();
-
 }  // namespace rodlab::io

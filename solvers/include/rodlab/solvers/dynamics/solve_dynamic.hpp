@@ -7,22 +7,25 @@
 #include "rodlab/result/dynamic_result.hpp"
 #include "rodlab/scene/scene.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
-#include "rodlab/solvers/dynamics/shooting_stepper.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
+#include "rodlab/solvers/dynamics/shooting/bdf_alpha.hpp"
 
 namespace rodlab::solvers::dynamics {
 
+/// The options of one run; the scheme-specific ones take their defaults from the scheme's own
+/// options struct, where each default is written once.
 struct DynamicSolveOptions {
-  std::string scheme = "variational";
+  std::string scheme = "variational";  ///< the default dynamics scheme (rodlab dynamic)
   int nodes = 20;
   double dt = 0.0;          ///< > 0 (resolve `auto` with auto_time_step first)
   double t_end = 0.0;       ///< > 0
   int output_every = 1;     ///< record every k-th step (and the last one)
   double tol = 1e-10;       ///< nonlinear solves inside a step
   int max_iterations = 50;  ///< per nonlinear solve
-  ShootingGrid grid = ShootingGrid::euler;  ///< `implicit-midpoint`, `bdf-alpha`: solver.grid
-  double alpha = -0.2;      ///< `bdf-alpha`: in [-0.5, 0] (0 BDF2, -0.5 trapezoidal; Till 2019: -0.2)
-  double rtol = 1e-10;      ///< `ida`: relative tolerance of the time integration
-  double atol = 1e-10;      ///< `ida`: absolute tolerance (scaled per component, ida_reference.hpp)
+  ShootingGrid grid = ShootingOptions{}.grid;  ///< `implicit-midpoint`, `bdf-alpha`: solver.grid
+  double alpha = BdfAlphaOptions{}.alpha;      ///< `bdf-alpha`: in [-0.5, 0] (0 BDF2, -0.5 trapezoidal)
+  double rtol = IdaOptions{}.rtol;  ///< `ida`: relative tolerance of the time integration
+  double atol = IdaOptions{}.atol;  ///< `ida`: absolute tolerance (scaled per component, ida_reference.hpp)
   scene::Initial initial = scene::Initial::straight;
 };
 

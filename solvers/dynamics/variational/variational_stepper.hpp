@@ -14,7 +14,7 @@
 #include "discrete_legendre.hpp"
 #include "kirchhoff_constraint.hpp"
 #include "rodlab/lie/small_angle.hpp"
-#include "rodlab/solvers/dynamics/variational.hpp"
+#include "rodlab/solvers/dynamics/variational/variational.hpp"
 #include "variational_actuators.hpp"
 
 namespace rodlab::solvers::dynamics {

@@ -8,20 +8,17 @@
 #include <memory>
 
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
-#include "rodlab/solvers/dynamics/shooting_stepper.hpp"
+#include "rodlab/solvers/dynamics/shooting/shooting_stepper.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 
 namespace rodlab::solvers::dynamics {
 
-/// Till, Aloi & Rucker's choice in their examples.
+/// Till, Aloi & Rucker's choice in their examples (0 is BDF2, -0.5 the trapezoidal rule).
 inline constexpr double kDefaultBdfAlpha = -0.2;
 
-struct BdfAlphaOptions {
-  int nodes = 20;
-  double tol = 1e-10;       ///< on the tip residual, wrenches scaled by E I / L and E I / L^2
-  int max_iterations = 50;  ///< shooting integrations per step, Jacobian columns included
+/// The shooting options (nodes, tolerance, iterations, grid; shooting_stepper.hpp) and alpha.
+struct BdfAlphaOptions : ShootingOptions {
   double alpha = kDefaultBdfAlpha;  ///< in [-0.5, 0]
-  ShootingGrid grid = ShootingGrid::euler;  ///< the march's spatial grid (shooting_stepper.hpp)
 };
 
 /// Starts at rest from `initial` (options.nodes nodes). Throws std::invalid_argument for alpha

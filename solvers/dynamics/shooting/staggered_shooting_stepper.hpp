@@ -21,7 +21,7 @@
 // length-controlled actuator (F), with the rows of `ida` on the segment-sum path lengths.
 #include <memory>
 
-#include "rodlab/solvers/dynamics/shooting_stepper.hpp"
+#include "rodlab/solvers/dynamics/shooting/shooting_stepper.hpp"
 
 namespace rodlab::solvers::dynamics {
 

@@ -1,4 +1,4 @@
-#include "rodlab/solvers/dynamics/semi_discrete_rod.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
 
 #include <algorithm>
 #include <cmath>

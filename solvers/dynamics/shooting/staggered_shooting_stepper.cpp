@@ -12,7 +12,7 @@
 #include "rodlab/lie/small_angle.hpp"
 #include "embedded_reference.hpp"
 #include "shooting_newton.hpp"
-#include "staggered_paths.hpp"
+#include "../staggered_paths.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {

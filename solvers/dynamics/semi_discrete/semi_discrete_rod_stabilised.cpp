@@ -22,7 +22,7 @@
 
 #include <Eigen/LU>
 
-#include "rodlab/solvers/dynamics/semi_discrete_rod.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {

@@ -1,4 +1,4 @@
-#include "rodlab/solvers/dynamics/variational.hpp"
+#include "rodlab/solvers/dynamics/variational/variational.hpp"
 
 #include "variational_stepper.hpp"
 

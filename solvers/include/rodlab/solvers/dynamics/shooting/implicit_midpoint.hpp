@@ -14,17 +14,13 @@
 #include <memory>
 
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
-#include "rodlab/solvers/dynamics/shooting_stepper.hpp"
+#include "rodlab/solvers/dynamics/shooting/shooting_stepper.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 
 namespace rodlab::solvers::dynamics {
 
-struct ImplicitMidpointOptions {
-  int nodes = 20;
-  double tol = 1e-10;       ///< on the tip residual, wrenches scaled by E I / L and E I / L^2
-  int max_iterations = 50;  ///< shooting integrations per step, Jacobian columns included
-  ShootingGrid grid = ShootingGrid::euler;  ///< the march's spatial grid (shooting_stepper.hpp)
-};
+/// Nodes, tolerance, iterations and the march's grid (shooting_stepper.hpp).
+using ImplicitMidpointOptions = ShootingOptions;
 
 /// Starts at rest from `initial` (options.nodes nodes).
 std::unique_ptr<Stepper> make_implicit_midpoint(const DynamicProblem& problem,

@@ -1,4 +1,7 @@
-#include "rodlab/solvers/dynamics/shooting_stepper.hpp"
+#include "rodlab/solvers/dynamics/shooting/shooting_stepper.hpp"
+
+#include "rodlab/solvers/dynamics/shooting/bdf_alpha.hpp"
+#include "rodlab/solvers/dynamics/shooting/implicit_midpoint.hpp"
 
 #include "embedded_reference.hpp"
 #include "shooting_newton.hpp"
@@ -358,6 +361,18 @@ std::optional<ShootingGrid> shooting_grid_from_name(std::string_view name) {
   if (name == "euler") return ShootingGrid::euler;
   if (name == "staggered") return ShootingGrid::staggered;
   return std::nullopt;
+}
+
+std::unique_ptr<Stepper> make_implicit_midpoint(const DynamicProblem& problem,
+                                                const ImplicitMidpointOptions& options,
+                                                const RestState& initial) {
+  return make_shooting_stepper(problem, options, initial, make_midpoint_rule());
+}
+
+std::unique_ptr<Stepper> make_bdf_alpha(const DynamicProblem& problem,
+                                        const BdfAlphaOptions& options, const RestState& initial) {
+  return make_shooting_stepper(problem, options, initial,
+                               make_bdf_alpha_rule(options.alpha, options.nodes));
 }
 
 }  // namespace rodlab::solvers::dynamics

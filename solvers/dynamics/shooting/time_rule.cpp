@@ -1,4 +1,4 @@
-#include "rodlab/solvers/dynamics/time_rule.hpp"
+#include "rodlab/solvers/dynamics/shooting/time_rule.hpp"
 
 #include <array>
 #include <cmath>

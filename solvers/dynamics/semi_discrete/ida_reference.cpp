@@ -1,4 +1,4 @@
-#include "rodlab/solvers/dynamics/ida_reference.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "rodlab/solvers/common/ida_solver.hpp"
-#include "rodlab/solvers/dynamics/semi_discrete_rod.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {

@@ -29,7 +29,7 @@
 
 #include "discrete_legendre.hpp"
 #include "rodlab/lie/se3.hpp"
-#include "staggered_paths.hpp"
+#include "../staggered_paths.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 

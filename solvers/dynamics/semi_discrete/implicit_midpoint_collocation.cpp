@@ -1,4 +1,4 @@
-#include "rodlab/solvers/dynamics/implicit_midpoint_collocation.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/implicit_midpoint_collocation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rodlab/solvers/common/kinsol_solver.hpp"
-#include "rodlab/solvers/dynamics/semi_discrete_rod.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 
 namespace rodlab::solvers::dynamics {

@@ -26,7 +26,7 @@
 
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
-#include "rodlab/solvers/dynamics/time_rule.hpp"
+#include "rodlab/solvers/dynamics/shooting/time_rule.hpp"
 
 namespace rodlab::solvers::dynamics {
 
