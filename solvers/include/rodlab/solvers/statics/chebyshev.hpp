@@ -44,7 +44,7 @@
 // (2.103)'s ad_xi^T Lambda bilinear; with actuators through dxi/dLambda, below), their theta
 // columns (dexp^-1 in theta, the loads in R) and the tip node's block by central differences;
 // with elements, the chart blocks too (the rows of later elements against the last theta of an
-// element, which moves their charts; until session 4 they came out zero, see docs/statics.md). It is
+// element, which moves their charts; docs/statics.md). It is
 // factorised by condensation (chebyshev_newton_matrix.hpp): theta_0 is known; the translations
 // rho are solved per element (the Lambda rows see only rotations, so rho reaches other rows only
 // through a clamped tip's position); each node's moment is eliminated through its rotation rows.
