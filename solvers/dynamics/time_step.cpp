@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "rodlab/rod/characteristics.hpp"
+#include "rodlab/solvers/schemes.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {
@@ -107,7 +108,9 @@ double variational_stable_step(const DynamicProblem& problem, int nodes) {
 }
 
 double auto_time_step(const DynamicProblem& problem, std::string_view scheme, int nodes) {
-  if (scheme == "variational") return kVariationalSafety * variational_stable_step(problem, nodes);
+  const auto info = find_scheme(scheme);
+  if (info && info->id == SchemeId::variational)
+    return kVariationalSafety * variational_stable_step(problem, nodes);
   const auto support = problem.tip_clamped() ? rod::TipSupport::clamped : rod::TipSupport::free;
   const auto c = rod::characteristics(problem.model(), nodes, support);
   return 1.0 / (c.first_bending_frequency_hz * kStepsPerPeriod);
