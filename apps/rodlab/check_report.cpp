@@ -1,10 +1,10 @@
 #include "check_report.hpp"
 
+#include "rodlab/io/text_format.hpp"
 #include "rodlab/rod/section.hpp"
 #include "rodlab/solvers/schemes.hpp"
 
 #include "common_options.hpp"
-#include "format.hpp"
 #include "overloaded.hpp"
 
 namespace rodlab::cli {
@@ -20,8 +20,8 @@ std::string with_unit(const std::string& value, const std::string& unit) {
 
 // --- describing scene inputs in words -------------------------------------------------------
 
-std::string value_text(double v) { return format_number(v); }
-std::string value_text(const Eigen::Vector3d& v) { return format_vector(v); }
+std::string value_text(double v) { return io::format_number(v); }
+std::string value_text(const Eigen::Vector3d& v) { return io::format_vector(v); }
 
 /// "0.5 N", or "steps: 0 N at t = 0 s, 0.5 N at t = 1 s" (long schedules summarised).
 template <class Value>
@@ -33,45 +33,45 @@ std::string describe(const scene::Schedule<Value>& schedule, const std::string& 
   if (points.size() > 4)
     return kind + " of " + std::to_string(points.size()) + " points from " +
            with_unit(value_text(points.front().second), unit) +
-           " at t = " + format_number(points.front().first) + " s to " +
+           " at t = " + io::format_number(points.front().first) + " s to " +
            with_unit(value_text(points.back().second), unit) +
-           " at t = " + format_number(points.back().first) + " s";
+           " at t = " + io::format_number(points.back().first) + " s";
   std::string out = kind + ":";
   for (std::size_t i = 0; i < points.size(); ++i)
     out += (i ? ", " : " ") + with_unit(value_text(points[i].second), unit) +
-           " at t = " + format_number(points[i].first) + " s";
+           " at t = " + io::format_number(points[i].first) + " s";
   return out;
 }
 
 std::string describe(const scene::Offset& offset) {
   if (offset.points.size() == 1)
-    return "offset " + format_vector(offset.points.front().second) + " m";
+    return "offset " + io::format_vector(offset.points.front().second) + " m";
   return "offset routed through " + std::to_string(offset.points.size()) + " points over s in [" +
-         format_number(offset.points.front().first) + ", " +
-         format_number(offset.points.back().first) + "] m";
+         io::format_number(offset.points.front().first) + ", " +
+         io::format_number(offset.points.back().first) + "] m";
 }
 
 std::string describe_extent(const std::optional<scene::Span>& span,
                             const std::optional<std::pair<double, double>>& limits,
                             const std::string& unit) {
   std::string out;
-  if (span) out += ", on s in [" + format_number(span->s0) + ", " + format_number(span->s1) + "] m";
+  if (span) out += ", on s in [" + io::format_number(span->s0) + ", " + io::format_number(span->s1) + "] m";
   if (limits)
-    out += ", limits [" + format_number(limits->first) + ", " + format_number(limits->second) +
+    out += ", limits [" + io::format_number(limits->first) + ", " + io::format_number(limits->second) +
            "]" + (unit.empty() ? "" : " " + unit);
   return out;
 }
 
 std::string describe(const rod::Circle& c) {
-  return "circle, diameter " + format_number(c.diameter) + " m";
+  return "circle, diameter " + io::format_number(c.diameter) + " m";
 }
 std::string describe(const rod::Tube& t) {
-  return "tube, outer diameter " + format_number(t.outer_diameter) + " m, inner diameter " +
-         format_number(t.inner_diameter) + " m";
+  return "tube, outer diameter " + io::format_number(t.outer_diameter) + " m, inner diameter " +
+         io::format_number(t.inner_diameter) + " m";
 }
 std::string describe(const rod::Rectangle& r) {
-  return "rectangle, width " + format_number(r.width) + " m (x), height " +
-         format_number(r.height) + " m (y)";
+  return "rectangle, width " + io::format_number(r.width) + " m (x), height " +
+         io::format_number(r.height) + " m (y)";
 }
 std::string describe(const rod::Section& section) {
   return std::visit([](const auto& shape) { return describe(shape); }, section);
@@ -85,16 +85,16 @@ std::string describe(const scene::Cable& c) {
 }
 std::string describe(const scene::Fluidic& f) {
   std::string out = "fluidic, " + describe(f.offset) + ", chamber radius " +
-                    format_number(f.chamber_radius) + " m, ";
+                    io::format_number(f.chamber_radius) + " m, ";
   out += f.pressure ? "pressure " + describe(*f.pressure, "Pa")
                     : "volume " + describe(*f.volume, "m^3");
   return out + describe_extent(f.span, f.limits, f.pressure ? "Pa" : "m^3");
 }
 std::string describe(const scene::Muscle& m) {
   return "muscle, " + describe(m.offset) + ", section " + describe(m.section) + ", E " +
-         format_number(m.material.E) + " Pa, input " + describe(m.input, "") + ", law " +
-         m.law.type + " (gain " + format_number(m.law.gain) + " N, stiffness " +
-         format_number(m.law.stiffness) + " N)" + describe_extent(m.span, m.limits, "");
+         io::format_number(m.material.E) + " Pa, input " + describe(m.input, "") + ", law " +
+         m.law.type + " (gain " + io::format_number(m.law.gain) + " N, stiffness " +
+         io::format_number(m.law.stiffness) + " N)" + describe_extent(m.span, m.limits, "");
 }
 std::string describe(const scene::Actuator& actuator) {
   return std::visit([](const auto& a) { return describe(a); }, actuator);
@@ -106,10 +106,10 @@ std::string describe(const lie::SE3& pose) {
   const bool unrotated = R.isIdentity(0.0);
   if (at_origin && unrotated) return "identity";
   const std::string rotation = unrotated ? std::string("identity")
-                                         : "[" + format_vector(R.row(0).transpose()) + ", " +
-                                               format_vector(R.row(1).transpose()) + ", " +
-                                               format_vector(R.row(2).transpose()) + "]";
-  return "position " + format_vector(pose.translation()) + " m, rotation " + rotation;
+                                         : "[" + io::format_vector(R.row(0).transpose()) + ", " +
+                                               io::format_vector(R.row(1).transpose()) + ", " +
+                                               io::format_vector(R.row(2).transpose()) + "]";
+  return "position " + io::format_vector(pose.translation()) + " m, rotation " + rotation;
 }
 
 std::string frame_name(scene::Frame frame) {
@@ -237,7 +237,7 @@ ReportSection time_section(const rod::Characteristics& c, const std::string& nod
   s.items.push_back({"nodes", "nodes", "N", static_cast<long long>(c.nodes), ""});
   s.items.push_back({"ds", "node spacing", "ds = L/(N-1)", c.ds, "m"});
   s.items.push_back({"dt_cfl", "CFL bound (3.43)", "ds/c_max", c.dt_cfl, "s"});
-  s.items.push_back({"dt_thesis", "explicit time step (3.44)", format_number(k) + " ds sqrt(rho/E)",
+  s.items.push_back({"dt_thesis", "explicit time step (3.44)", io::format_number(k) + " ds sqrt(rho/E)",
                      c.dt_thesis, "s"});
   s.items.push_back({"thesis_safety_factor", "safety factor (thesis)", "k", k, ""});
   return s;
@@ -261,7 +261,7 @@ ReportSection adequacy_section(const scene::Scene& scene, const rod::Characteris
   s.items.push_back({"kirchhoff_error_estimate", "Kirchhoff error estimate", "3 E I/(G A L^2)",
                      c.kirchhoff_error_estimate, ""});
   s.items.push_back({"kirchhoff_safe", "Kirchhoff safe (< 1 %)", "", c.kirchhoff_safe, ""});
-  const std::string percent = format_number(100.0 * c.kirchhoff_error_estimate) + " %";
+  const std::string percent = io::format_number(100.0 * c.kirchhoff_error_estimate) + " %";
   const bool kirchhoff = scene.rod.model == rod::ModelKind::kirchhoff;
   std::string verdict = "shear adds about " + percent + " to the bending deflection";
   if (c.kirchhoff_safe)
@@ -277,14 +277,14 @@ ReportSection adequacy_section(const scene::Scene& scene, const rod::Characteris
 ReportSection loads_section(const scene::Scene& scene) {
   const auto& l = scene.loads;
   std::vector<std::string> loads;
-  if (l.gravity) loads.push_back("gravity " + format_vector(*l.gravity) + " m/s^2");
+  if (l.gravity) loads.push_back("gravity " + io::format_vector(*l.gravity) + " m/s^2");
   if (l.buoyancy)
-    loads.push_back("buoyancy, fluid density " + format_number(l.buoyancy->fluid_density) +
+    loads.push_back("buoyancy, fluid density " + io::format_number(l.buoyancy->fluid_density) +
                     " kg/m^3");
   if (l.drag)
-    loads.push_back("drag, fluid density " + format_number(l.drag->fluid_density) +
-                    " kg/m^3, laminar " + format_vector(l.drag->laminar) + ", turbulent " +
-                    format_vector(l.drag->turbulent));
+    loads.push_back("drag, fluid density " + io::format_number(l.drag->fluid_density) +
+                    " kg/m^3, laminar " + io::format_vector(l.drag->laminar) + ", turbulent " +
+                    io::format_vector(l.drag->turbulent));
   if (l.distributed)
     loads.push_back("distributed wrench, moment " + describe(l.distributed->moment, "N m/m") +
                     ", force " + describe(l.distributed->force, "N/m") + ", " +

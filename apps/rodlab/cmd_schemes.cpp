@@ -2,17 +2,17 @@
 #include <iostream>
 #include <string>
 
+#include "rodlab/io/text_table.hpp"
 #include "rodlab/solvers/schemes.hpp"
 
 #include "command.hpp"
 #include "exit_status.hpp"
-#include "text_table.hpp"
 
 namespace rodlab::cli {
 namespace {
 
 int run(const Invocation&) {
-  TextTable table;
+  io::TextTable table;
   table.add_row({"name", "problem", "order", "type", "reference", "method"});
   table.add_rule();
   for (const auto& s : solvers::all_schemes()) {

@@ -10,18 +10,21 @@
 #include <stdexcept>
 #include <string>
 
+#include "rodlab/io/text_format.hpp"
+
 #include "command.hpp"
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
-#include "format.hpp"
-#include "study_convergence.hpp"
-#include "study_executor.hpp"
-#include "study_processes.hpp"
-#include "study_stability.hpp"
-#include "study_work_precision.hpp"
+#include "studies/convergence.hpp"
+#include "studies/executor.hpp"
+#include "studies/processes.hpp"
+#include "studies/stability.hpp"
+#include "studies/work_precision.hpp"
 
 namespace rodlab::cli {
+
+namespace study = validation::study;
 namespace {
 
 using solvers::Problem;
@@ -146,9 +149,9 @@ std::vector<solvers::SchemeInfo> chosen_schemes(const OptionReader& reader, Prob
 
 std::string describe(const study::Candidate& c) {
   std::string out = c.scheme + ", N = " + std::to_string(c.nodes);
-  if (c.dt) out += ", dt = " + format_number(*c.dt) + " s";
-  out += ": tip error " + format_number(c.error) + " m, median wall time " +
-         format_number(c.wall_time_s * 1e3) + " ms (" + std::to_string(c.repeats) +
+  if (c.dt) out += ", dt = " + io::format_number(*c.dt) + " s";
+  out += ": tip error " + io::format_number(c.error) + " m, median wall time " +
+         io::format_number(c.wall_time_s * 1e3) + " ms (" + std::to_string(c.repeats) +
          (c.repeats == 1 ? " run)" : " runs)");
   return out;
 }
@@ -210,10 +213,10 @@ int run_sweep_kind(const std::string& kind, const study::Settings& settings,
           if (pareto[i])
             std::cout << "  " << sweep.rows[i].spec.scheme << " N = " << sweep.rows[i].spec.nodes
                       << (settings.problem == Problem::dynamics
-                              ? " dt = " + format_number(sweep.rows[i].run.dt)
+                              ? " dt = " + io::format_number(sweep.rows[i].run.dt)
                               : std::string())
-                      << ": " << format_number(sweep.rows[i].error) << " m in "
-                      << format_number(sweep.rows[i].run.wall_time_s) << " s\n";
+                      << ": " << io::format_number(sweep.rows[i].error) << " m in "
+                      << io::format_number(sweep.rows[i].run.wall_time_s) << " s\n";
       }
     }
     if (sweep.failed > 0) {
@@ -230,13 +233,13 @@ int run_sweep_kind(const std::string& kind, const study::Settings& settings,
 
   const auto rec = study::recommend(wp["rows"], *target, budget_ms);
   const std::string budget_text =
-      budget_ms ? " within " + format_number(*budget_ms) + " ms per run" : std::string();
-  std::cout << "\nrecommendation for a tip error <= " << format_number(*target) << " m"
+      budget_ms ? " within " + io::format_number(*budget_ms) + " ms per run" : std::string();
+  std::cout << "\nrecommendation for a tip error <= " << io::format_number(*target) << " m"
             << budget_text << " (" << rec.candidates << " measured runs on this machine):\n";
   if (rec.best) {
     std::cout << "  " << describe(*rec.best) << '\n';
   } else {
-    std::cout << "  nothing reaches " << format_number(*target) << " m" << budget_text << '\n';
+    std::cout << "  nothing reaches " << io::format_number(*target) << " m" << budget_text << '\n';
     if (rec.fastest_meeting_tol)
       std::cout << "  fastest that meets the tolerance: " << describe(*rec.fastest_meeting_tol)
                 << '\n';
@@ -267,7 +270,7 @@ int run(const Invocation& inv) {
   for (const auto k : kKinds) kind_ok = kind_ok || k == kind;
   if (!kind_ok) {
     std::vector<std::string> kinds(kKinds.begin(), kKinds.end());
-    reader.problem("KIND: unknown study '" + kind + "'; the studies are: " + join(kinds));
+    reader.problem("KIND: unknown study '" + kind + "'; the studies are: " + io::join(kinds));
   }
   SolveOptions options;
   options.scene_path = inv.args.positionals().back();
@@ -332,8 +335,8 @@ int run(const Invocation& inv) {
                        options.scene_path);
     for (const double dt : settings.dts)
       if (dt > settings.t_end)
-        throw UsageError("--dt: the time step " + format_number(dt) +
-                         " s exceeds the run length " + format_number(settings.t_end) + " s");
+        throw UsageError("--dt: the time step " + io::format_number(dt) +
+                         " s exceeds the run length " + io::format_number(settings.t_end) + " s");
   }
   const std::string dir =
       out_dir ? out_dir->string()

@@ -2,25 +2,25 @@
 // the validation suite and its report (docs/validation.md).
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <string>
 
-#include "rodlab/io/atomic_file.hpp"
+#include "rodlab/io/text_format.hpp"
 
+#include "checks/check.hpp"
+#include "suite.hpp"
 #include "command.hpp"
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
-#include "format.hpp"
-#include "validation_checks.hpp"
-#include "validation_figures.hpp"
-#include "validation_report.hpp"
 
 namespace rodlab::cli {
 namespace {
 namespace fs = std::filesystem;
+using validation::check_families;
+using validation::CheckFamily;
+using validation::scene_files;
 
 /// Every line of `text` prefixed with `indent`, newline-terminated.
 std::string indented(const std::string& text, const std::string& indent) {
@@ -40,7 +40,7 @@ std::string indented(const std::string& text, const std::string& indent) {
 std::string family_names() {
   std::vector<std::string> names;
   for (const auto& f : check_families()) names.emplace_back(f.name);
-  return join(names);
+  return io::join(names);
 }
 
 constexpr std::string_view kDefaultOut = "out/validation";
@@ -77,43 +77,20 @@ int run(const Invocation& inv) {
   }
   reader.finish();
 
-  ValidationReport report;
-  report.mode = reader.flag("--full") ? "full" : "quick";
-  report.scenes_dir = scenes.string();
-  report.provenance = collect_provenance(RODLAB_SOURCE_DIR, inv.command_line);
-  for (const auto& f : check_families())
-    if (only.empty() || std::find(only.begin(), only.end(), f.name) != only.end())
-      report.families.push_back({std::string(f.name), std::string(f.description)});
-  DataSink sink;
-  const auto start = std::chrono::steady_clock::now();
-  report.checks = run_checks(ValidationContext{scenes, report.mode == "full", &sink}, only);
-  report.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  report.data_sets = std::move(sink.data_sets);
-
-  fs::create_directories(out / "data");
-  fs::create_directories(out / "figures");
-  for (const auto& d : report.data_sets) io::write_file_atomically(out / data_file(d), d.to_csv());
-  // report.json first: the figure script reads the figure specs from it.
-  const fs::path script = RODLAB_SOURCE_DIR "/validation/make_figures.py";
-  const auto pythons = figure_pythons();
-  report.figures.command = pythons.front() + " " + shell_quote(script.string()) + " " +
-                           shell_quote(out.string());
-  io::write_file_atomically(out / "report.json", to_json(report));
-  if (reader.flag("--no-figures")) {
-    report.figures.state = "skipped";
-    report.figures.message = "--no-figures";
-  } else {
-    report.figures = run_figure_script(report, pythons, script, out);
-  }
-  io::write_file_atomically(out / "report.json", to_json(report));
-  io::write_file_atomically(out / "report.md", to_markdown(report));
-  io::write_file_atomically(out / "index.html", to_html(report, out));
+  validation::SuiteOptions suite;
+  suite.full = reader.flag("--full");
+  suite.scenes_dir = scenes;
+  suite.out_dir = out;
+  suite.only = only;
+  suite.figures = !reader.flag("--no-figures");
+  suite.source_dir = RODLAB_SOURCE_DIR;
+  suite.command_line = inv.command_line;
+  const validation::ValidationReport report = validation::run_suite(suite);
 
   for (const auto& c : report.checks) {
     if (c.passed) continue;
-    std::cout << "FAIL " << c.name << ": measured " << format_number(c.measured);
-    if (c.expected) std::cout << ", expected " << format_number(*c.expected);
+    std::cout << "FAIL " << c.name << ": measured " << io::format_number(c.measured);
+    if (c.expected) std::cout << ", expected " << io::format_number(*c.expected);
     std::cout << " (" << c.reference << ")\n";
     if (!c.detail.empty()) std::cout << indented(c.detail, "     ");
   }
@@ -122,7 +99,7 @@ int run(const Invocation& inv) {
     if (!report.figures.message.empty()) std::cout << indented(report.figures.message, "     ");
   }
   std::cout << report.passed() << " passed, " << report.failed() << " failed (" << report.mode
-            << " suite, " << format_number(report.wall_time_s) << " s; report in "
+            << " suite, " << io::format_number(report.wall_time_s) << " s; report in "
             << (out / "index.html").string() << ")\n";
   return report.failed() == 0 ? kSolved : kNotConverged;
 }

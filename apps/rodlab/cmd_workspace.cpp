@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "rodlab/io/result_writer.hpp"
+#include "rodlab/io/text_format.hpp"
 #include "rodlab/solvers/dynamics/dynamic_workspace.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/statics/workspace.hpp"
@@ -18,7 +19,6 @@
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
-#include "format.hpp"
 
 namespace rodlab::cli {
 namespace {
@@ -87,10 +87,10 @@ int run(const Invocation& inv) {
                                          : " (" + std::to_string(*samples) + " held inputs)")
                         : " (" + std::to_string(result.failed) + " did not converge)")
             << ", seed " << result.seed << "\n"
-            << "omega_bound      " << format_number(result.bounds.omega_bound) << " rad/m\n"
-            << "epsilon          [" << format_number(result.bounds.eps_low) << ", "
-            << format_number(result.bounds.eps_high) << "]\n"
-            << "wall time        " << format_number(result.wall_time_s) << " s\n";
+            << "omega_bound      " << io::format_number(result.bounds.omega_bound) << " rad/m\n"
+            << "epsilon          [" << io::format_number(result.bounds.eps_low) << ", "
+            << io::format_number(result.bounds.eps_high) << "]\n"
+            << "wall time        " << io::format_number(result.wall_time_s) << " s\n";
   if (options.out) std::cout << "result written to " << options.out->string() << '\n';
   return result.failed == 0 ? kSolved : kNotConverged;
 }

@@ -4,10 +4,10 @@
 #include <system_error>
 
 #include "rodlab/io/result_writer.hpp"
+#include "rodlab/io/text_format.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 
 #include "errors.hpp"
-#include "format.hpp"
 
 namespace rodlab::cli {
 namespace fs = std::filesystem;
@@ -16,12 +16,12 @@ using solvers::Problem;
 namespace {
 const solvers::dynamics::DynamicSolveOptions kDefaults;
 const std::string kRtolHelp =
-    "ida: relative tolerance of the time integration > 0; default: " + format_number(kDefaults.rtol);
+    "ida: relative tolerance of the time integration > 0; default: " + io::format_number(kDefaults.rtol);
 const std::string kAtolHelp =
-    "ida: absolute tolerance > 0 (scaled per component); default: " + format_number(kDefaults.atol);
+    "ida: absolute tolerance > 0 (scaled per component); default: " + io::format_number(kDefaults.atol);
 const std::string kAlphaHelp =
     "bdf-alpha: alpha in [-0.5, 0] (0 BDF2, -0.5 trapezoidal); default: solver.alpha, else " +
-    format_number(kDefaults.alpha);
+    io::format_number(kDefaults.alpha);
 const std::string kGridHelp =
     "implicit-midpoint, bdf-alpha: the shooting march's spatial grid, euler (explicit Euler RKMK "
     "on the nodes, the thesis) or staggered (the grid of variational and ida, second order); "
@@ -212,8 +212,8 @@ DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& 
   run.automatic_dt = dt.automatic;
   solve.dt = dt.value;
   if (!dt.automatic && dt.value > solve.t_end)
-    throw UsageError("--dt: the time step " + format_number(dt.value) +
-                     " s exceeds the end time " + format_number(solve.t_end) + " s");
+    throw UsageError("--dt: the time step " + io::format_number(dt.value) +
+                     " s exceeds the end time " + io::format_number(solve.t_end) + " s");
   solve.output_every = options.output_every.value_or(dynamics.output_every);
   solve.rtol = options.rtol.value_or(solve.rtol);
   solve.atol = options.atol.value_or(solve.atol);

@@ -1,6 +1,6 @@
 #include "help.hpp"
 
-#include "text_table.hpp"
+#include "rodlab/io/text_table.hpp"
 
 namespace rodlab::cli {
 
@@ -9,7 +9,7 @@ std::string usage_overview(std::span<const Command* const> commands) {
                     " - Cosserat and Kirchhoff rods: statics, dynamics, studies\n\n"
                     "Usage: rodlab SUBCOMMAND [arguments] [options]\n\n"
                     "Subcommands:\n";
-  TextTable table;
+  io::TextTable table;
   for (const Command* c : commands)
     table.add_row(
         {"  " + std::string(c->name) + " " + std::string(c->synopsis), std::string(c->summary)});
@@ -33,7 +33,7 @@ std::string command_help(const Command& command) {
   std::string out = "Usage: rodlab " + std::string(command.name) + " " +
                     std::string(command.synopsis) + "\n\n" + std::string(command.description);
   if (!out.empty() && out.back() != '\n') out += '\n';
-  TextTable table;
+  io::TextTable table;
   for (const auto& o : command.options) {
     std::string left = "  " + std::string(o.name);
     if (!o.metavar.empty()) (left += " ") += o.metavar;

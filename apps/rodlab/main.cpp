@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "rodlab/io/scene_loader.hpp"
+#include "rodlab/io/text_format.hpp"
 
 #include "command.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
-#include "format.hpp"
 #include "help.hpp"
 
 namespace rodlab::cli {
@@ -108,6 +108,6 @@ int dispatch(const std::vector<std::string>& args, const std::string& command_li
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   std::string command_line = "rodlab";
-  for (const auto& a : args) (command_line += ' ') += rodlab::cli::shell_quote(a);
+  for (const auto& a : args) (command_line += ' ') += rodlab::io::shell_quote(a);
   return rodlab::cli::dispatch(args, command_line);
 }

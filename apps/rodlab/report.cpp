@@ -2,9 +2,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "format.hpp"
+#include "rodlab/io/text_format.hpp"
+#include "rodlab/io/text_table.hpp"
+
 #include "overloaded.hpp"
-#include "text_table.hpp"
 
 namespace rodlab::cli {
 namespace {
@@ -14,23 +15,23 @@ std::string with_unit(std::string value, const std::string& unit) {
 }
 
 /// One aligned row: label, symbol, "=" (when there is a symbol), value with unit.
-void add_row(TextTable& table, const std::string& label, const std::string& symbol,
+void add_row(io::TextTable& table, const std::string& label, const std::string& symbol,
              const std::string& value, const std::string& unit) {
   table.add_row({"  " + label, symbol, symbol.empty() ? "" : "=", with_unit(value, unit)});
 }
 
-void add_item_rows(TextTable& table, const ReportItem& item) {
+void add_item_rows(io::TextTable& table, const ReportItem& item) {
   const auto row = [&](const std::string& value) {
     add_row(table, item.label, item.symbol, value, item.unit);
   };
   std::visit(Overloaded{
                  [&](const std::string& v) { row(v); },
-                 [&](double v) { row(format_number(v)); },
+                 [&](double v) { row(io::format_number(v)); },
                  [&](long long v) { row(std::to_string(v)); },
                  [&](bool v) { row(v ? "yes" : "no"); },
                  [&](const std::vector<double>& v) {
                    if (item.component_labels.size() != v.size()) {
-                     row(format_vector(Eigen::Map<const Eigen::VectorXd>(
+                     row(io::format_vector(Eigen::Map<const Eigen::VectorXd>(
                          v.data(), static_cast<Eigen::Index>(v.size()))));
                      return;
                    }
@@ -38,7 +39,7 @@ void add_item_rows(TextTable& table, const ReportItem& item) {
                      std::string symbol = item.symbol + "[" + std::to_string(i) + "]";
                      if (i < item.component_formulas.size())
                        (symbol += " = ") += item.component_formulas[i];
-                     add_row(table, item.component_labels[i], symbol, format_number(v[i]),
+                     add_row(table, item.component_labels[i], symbol, io::format_number(v[i]),
                              i < item.component_units.size() ? item.component_units[i] : item.unit);
                    }
                  },
@@ -54,7 +55,7 @@ void add_item_rows(TextTable& table, const ReportItem& item) {
 }  // namespace
 
 std::string render_text(const Report& report) {
-  TextTable table;
+  io::TextTable table;
   for (const auto& section : report.sections) {
     table.add_line(section.title);
     for (const auto& item : section.items) add_item_rows(table, item);

@@ -23,9 +23,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_support.hpp"
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/solvers/schemes.hpp"
+
+#include "cli_support.hpp"
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;

@@ -25,7 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
-#include "validation_report.hpp"
+#include "report/report.hpp"
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
@@ -97,12 +97,12 @@ BOOST_AUTO_TEST_CASE(quick_suite_writes_the_whole_report) {
   BOOST_TEST(statics_recommends >= 1);
   BOOST_TEST(dynamics_recommends >= 1);
   BOOST_TEST(fronts == 2);
-  for (const char* key : rodlab::cli::kProvenanceKeys) BOOST_TEST(j["provenance"].contains(key), key);
+  for (const char* key : rodlab::validation::kProvenanceKeys) BOOST_TEST(j["provenance"].contains(key), key);
 
   const std::string html = read(dir / "index.html");
   for (const auto& c : j["checks"]) {
     const std::string name = c["name"];
-    BOOST_TEST(contains(html, rodlab::cli::html_escape(name)), name);
+    BOOST_TEST(contains(html, rodlab::validation::html_escape(name)), name);
   }
   const bool figures = have_matplotlib();
   BOOST_TEST(j["figures"]["state"] == (figures ? "generated" : "unavailable"),
@@ -114,12 +114,12 @@ BOOST_AUTO_TEST_CASE(quick_suite_writes_the_whole_report) {
     BOOST_TEST(csv.size() > 0u);
     for (const auto& f : d["figures"]) {
       ++n_figures;
-      BOOST_TEST(contains(html, rodlab::cli::html_escape(f["caption"].get<std::string>())),
+      BOOST_TEST(contains(html, rodlab::validation::html_escape(f["caption"].get<std::string>())),
                  f["name"]);
       if (!figures) continue;
       const std::string svg = read(dir / f["file"].get<std::string>());
       BOOST_TEST(contains(svg, "<svg"), f["file"]);
-      BOOST_TEST(contains(html, "data:image/svg+xml;base64," + rodlab::cli::base64(svg)),
+      BOOST_TEST(contains(html, "data:image/svg+xml;base64," + rodlab::validation::base64(svg)),
                  f["file"] << " embedded");
     }
   }

@@ -20,13 +20,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "validation_figures.hpp"
+#include "report/figures.hpp"
 #include "cli_support.hpp"
-#include "validation_report.hpp"
+#include "report/report.hpp"
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
-using namespace rodlab::cli;
+using namespace rodlab::validation;
 
 namespace {
 

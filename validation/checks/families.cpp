@@ -1,0 +1,49 @@
+// The families of `rodlab validate`, in report order, and the loop that runs them.
+#include <algorithm>
+#include <array>
+#include <exception>
+
+#include "checks/check.hpp"
+
+namespace rodlab::validation {
+
+std::span<const CheckFamily> check_families() {
+  // Add a family here (and its function in its own file, declared in validation_checks.hpp).
+  static const std::array<CheckFamily, 4> families{{
+      {"scenes", "example scenes load; derived quantities equal their closed forms", &scene_checks},
+      {"statics", "statics schemes on the thesis's 2.7 problems and closed forms", &statics_checks},
+      {"dynamics",
+       "dynamics schemes on the Table 2.1 cantilever: bending frequency, energy with and without "
+       "damping, det drift, stability limit, static limit, agreement between schemes and with IDA",
+       &dynamics_checks},
+      {"studies",
+       "the studies of `rodlab study` on example scenes: work-precision diagrams (statics and "
+       "dynamics) with their Pareto fronts and `study recommend` answers verified against an "
+       "independent reference; the stability map of the explicit scheme and the implicit "
+       "schemes' step scans",
+       &study_checks},
+  }};
+  return families;
+}
+
+std::vector<Check> run_checks(const ValidationContext& context, std::span<const std::string> only) {
+  std::vector<Check> all;
+  for (const auto& family : check_families()) {
+    if (!only.empty() && std::find(only.begin(), only.end(), family.name) == only.end()) continue;
+    if (context.sink) context.sink->current_family = std::string(family.name);
+    std::vector<Check> checks;
+    try {
+      checks = family.run(context);
+    } catch (const std::exception& e) {
+      checks = {boolean_check(std::string(family.name) + " family runs", false,
+                              "runs without an exception", e.what())};
+    }
+    for (auto& c : checks) {
+      c.family = std::string(family.name);
+      all.push_back(std::move(c));
+    }
+  }
+  return all;
+}
+
+}  // namespace rodlab::validation

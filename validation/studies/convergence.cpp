@@ -1,0 +1,349 @@
+#include "studies/convergence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "rodlab/io/text_format.hpp"
+#include "rodlab/io/text_table.hpp"
+
+namespace rodlab::validation::study {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using solvers::Problem;
+
+struct Plan {
+  std::vector<RunSpec> specs;
+  std::vector<std::string> roles;
+  std::vector<int> reference_of;  ///< index of the spec a spec is compared with; -1: none
+  Json reference;
+};
+
+Plan plan_statics(const Settings& s) {
+  Plan plan;
+  const auto nodes = study_nodes(s);
+  const int finest = *std::max_element(nodes.begin(), nodes.end());
+  const std::string ref = s.reference.value_or("kinsol");
+  const int ref_nodes = ref == "chebyshev" ? std::max(2 * finest, 48) : std::max(4 * finest, 200);
+  const double ref_tol = std::min(s.tol, 1e-12);
+  plan.specs.push_back({ref, Problem::statics, ref_nodes, 0.0, 0.0, ref_tol, 1, false});
+  plan.roles.push_back("reference");
+  plan.reference_of.push_back(-1);
+  plan.reference = {{"kind", "scheme"},
+                    {"scheme", ref},
+                    {"nodes", ref_nodes},
+                    {"tol", ref_tol},
+                    {"description", ref + " at N = " + std::to_string(ref_nodes) + ", tol " +
+                                        io::format_number(ref_tol)}};
+  for (const auto& scheme : s.schemes)
+    for (const int n : nodes) {
+      plan.specs.push_back(
+          {std::string(scheme.name), Problem::statics, n, 0.0, 0.0, s.tol, s.repeats, false});
+      plan.roles.push_back("study");
+      plan.reference_of.push_back(0);
+    }
+  return plan;
+}
+
+Plan plan_dynamics(const Settings& s) {
+  Plan plan;
+  const bool use_ida = s.reference ? *s.reference == "ida" : scheme_available("ida");
+  for (const int n : study_nodes(s)) {
+    int ref_index = -1;
+    if (use_ida) {
+      double finest = std::numeric_limits<double>::infinity();
+      for (const auto& scheme : s.schemes)
+        for (const double dt : study_steps(s, scheme, n)) finest = std::min(finest, dt);
+      ref_index = static_cast<int>(plan.specs.size());
+      plan.specs.push_back({"ida", Problem::dynamics, n, finest, s.t_end, std::min(s.tol, 1e-10),
+                            1, true});
+      plan.roles.push_back("reference");
+      plan.reference_of.push_back(-1);
+    }
+    for (const auto& scheme : s.schemes) {
+      auto steps = study_steps(s, scheme, n);
+      std::sort(steps.begin(), steps.end(), std::greater<>());
+      steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
+      const int first = static_cast<int>(plan.specs.size());
+      for (const double dt : steps) {
+        plan.specs.push_back({std::string(scheme.name), Problem::dynamics, n, dt, s.t_end, s.tol,
+                              s.repeats, true});
+        plan.roles.push_back("study");
+        plan.reference_of.push_back(ref_index);
+      }
+      if (!use_ida) {  // Richardson: the finest step of the same scheme and N
+        const int last = static_cast<int>(plan.specs.size()) - 1;
+        plan.roles[last] = "reference";
+        for (int i = first; i <= last; ++i) plan.reference_of[i] = i == last ? -1 : last;
+      }
+    }
+  }
+  if (use_ida)
+    plan.reference = {{"kind", "scheme"},
+                      {"scheme", "ida"},
+                      {"tol", std::min(s.tol, 1e-10)},
+                      {"description", "ida at the same N, tol " +
+                                          io::format_number(std::min(s.tol, 1e-10)) +
+                                          ", output at the finest step of that N"}};
+  else
+    plan.reference = {
+        {"kind", "richardson"},
+        {"description",
+         "Richardson: the finest time step of the same scheme and N (ida is not available)"}};
+  return plan;
+}
+
+/// Joint refinement: every scheme at every N with dt proportional to ds (joint_steps), against
+/// ida at 4 (N_finest - 1) + 1 nodes, output at the coarsest step of all runs.
+Plan plan_dynamics_joint(const Settings& s) {
+  Plan plan;
+  auto nodes = study_nodes(s);
+  std::sort(nodes.begin(), nodes.end());
+  const int ref_nodes = 4 * (nodes.back() - 1) + 1;
+  const double ref_tol = std::min(s.tol, 1e-10);
+  std::vector<std::vector<double>> steps;
+  double coarsest = 0.0;
+  for (const auto& scheme : s.schemes) {
+    steps.push_back(joint_steps(s, scheme, nodes));
+    coarsest = std::max(coarsest, *std::max_element(steps.back().begin(), steps.back().end()));
+  }
+  // the reference's output step: the coarsest run's (ida's cost grows with its output count)
+  plan.specs.push_back({"ida", Problem::dynamics, ref_nodes, coarsest, s.t_end, ref_tol, 1, true});
+  plan.roles.push_back("reference");
+  plan.reference_of.push_back(-1);
+  for (std::size_t k = 0; k < s.schemes.size(); ++k)
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      plan.specs.push_back({std::string(s.schemes[k].name), Problem::dynamics, nodes[i],
+                            steps[k][i], s.t_end, s.tol, s.repeats, true});
+      plan.roles.push_back("study");
+      plan.reference_of.push_back(0);
+    }
+  plan.reference = {{"kind", "scheme"},
+                    {"scheme", "ida"},
+                    {"nodes", ref_nodes},
+                    {"tol", ref_tol},
+                    {"description", "ida at N = " + std::to_string(ref_nodes) + ", tol " +
+                                        io::format_number(ref_tol) +
+                                        ", output at the coarsest step; N and dt refined "
+                                        "together (dt proportional to ds)"}};
+  return plan;
+}
+
+/// Largest tip distance over the output times the run shares with its reference.
+double max_common_error(const RunRecord& run, const RunRecord& ref, double t_end) {
+  double worst = 0.0;
+  std::size_t j = 0;
+  const double match = 1e-9 * t_end;
+  for (std::size_t i = 0; i < run.t.size(); ++i) {
+    while (j < ref.t.size() && ref.t[j] < run.t[i] - match) ++j;
+    if (j < ref.t.size() && std::abs(ref.t[j] - run.t[i]) <= match)
+      worst = std::max(worst, (run.tips[i] - ref.tips[j]).norm());
+  }
+  return worst;
+}
+
+}  // namespace
+
+Sweep run_sweep(const Settings& s, const Executor& executor) {
+  const bool joint = s.problem == Problem::dynamics && s.refine == Refinement::joint;
+  const Plan plan = s.problem == Problem::statics ? plan_statics(s)
+                    : joint                      ? plan_dynamics_joint(s)
+                                                 : plan_dynamics(s);
+  std::vector<std::function<Json()>> tasks;
+  for (const auto& spec : plan.specs)
+    tasks.push_back([&s, spec] { return to_json(run_case(s.scene, spec)); });
+  const auto results = run_tasks(tasks, executor);
+  Sweep sweep;
+  sweep.reference = plan.reference;
+  if (results.empty()) return sweep;  // not rank 0
+
+  const double length = s.scene.rod.length;
+  double scale = length;
+  for (std::size_t i = 0; i < plan.specs.size(); ++i) {
+    SweepRow row;
+    row.role = plan.roles[i];
+    row.spec = plan.specs[i];
+    row.run = record_from_json(results[i]);
+    row.h = s.problem == Problem::statics || joint ? length / (row.spec.nodes - 1) : row.run.dt;
+    if (row.run.dt == 0.0 && s.problem == Problem::dynamics && !joint) row.h = row.spec.dt;
+    if (row.role == "reference" && row.run.converged) scale = std::max(scale, row.run.tip.norm());
+    sweep.rows.push_back(std::move(row));
+  }
+  sweep.rounding_floor = rounding_floor(scale);
+  for (std::size_t i = 0; i < sweep.rows.size(); ++i) {
+    auto& row = sweep.rows[i];
+    row.error = row.max_error = kNaN;
+    if (row.role == "study" && !row.run.converged) ++sweep.failed;
+    const int r = plan.reference_of[i];
+    if (r < 0) continue;
+    const auto& ref = sweep.rows[static_cast<std::size_t>(r)].run;
+    if (!ref.converged) {
+      row.note = "the reference did not converge: " + ref.reason;
+      continue;
+    }
+    if (!row.run.converged) continue;
+    row.error = (row.run.tip - ref.tip).norm();
+    if (s.problem == Problem::dynamics)
+      row.max_error = std::max(row.error, max_common_error(row.run, ref, s.t_end));
+  }
+
+  // Orders: statics and joint refinement per scheme (in ds), dynamics per scheme and N (in dt).
+  std::map<std::pair<std::string, int>, std::vector<std::size_t>> groups;
+  std::vector<std::pair<std::string, int>> order;
+  for (std::size_t i = 0; i < sweep.rows.size(); ++i) {
+    const auto& row = sweep.rows[i];
+    if (row.role != "study") continue;
+    const std::pair<std::string, int> key{row.spec.scheme,
+                                          s.problem == Problem::statics || joint ? 0
+                                                                                 : row.spec.nodes};
+    if (!groups.count(key)) order.push_back(key);
+    groups[key].push_back(i);
+  }
+  for (const auto& key : order) {
+    const auto& members = groups[key];
+    std::vector<FitPoint> points;
+    for (const auto i : members) {
+      const auto& row = sweep.rows[i];
+      points.push_back({row.h, row.error, row.run.converged && std::isfinite(row.error)});
+    }
+    SchemeOrder o;
+    o.scheme = key.first;
+    o.nodes = key.second;
+    o.variable = s.problem == Problem::statics ? "ds" : joint ? "ds (dt ~ ds)" : "dt";
+    if (const auto info = solvers::find_scheme(key.first)) o.expected = std::string(info->order);
+    // the shooting schemes on the staggered grid (solver.grid) are second order in s too
+    if (s.scene.solver.grid == std::optional<std::string>("staggered") &&
+        (key.first == "implicit-midpoint" || key.first == "bdf-alpha"))
+      o.expected = "2 (t) / 2 (s)";
+    o.fit = fit_order(points, sweep.rounding_floor);
+    o.h_max = 0.0;
+    o.h_min = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      if (!o.fit.used[k]) continue;
+      sweep.rows[members[k]].in_fit = true;
+      o.h_max = std::max(o.h_max, points[k].h);
+      o.h_min = std::min(o.h_min, points[k].h);
+    }
+    if (o.fit.points == 0) o.h_min = o.h_max = kNaN;
+    sweep.orders.push_back(std::move(o));
+  }
+  return sweep;
+}
+
+std::string convergence_csv(const Sweep& sweep) {
+  std::string out =
+      "scheme,role,nodes,dt,h,tip_x,tip_y,tip_z,error,max_error,in_fit,converged,reason,"
+      "wall_time_s,wall_time_min_s,repeats,steps\n";
+  for (const auto& r : sweep.rows) {
+    const bool dyn = r.spec.problem == solvers::Problem::dynamics;
+    out += csv_text(r.spec.scheme) + ',' + r.role + ',' + std::to_string(r.spec.nodes) + ',' +
+           (dyn ? csv_number(r.run.dt) : "") + ',' + csv_number(r.h) + ',' +
+           csv_number(r.run.tip.x()) + ',' + csv_number(r.run.tip.y()) + ',' +
+           csv_number(r.run.tip.z()) + ',' + csv_number(r.error) + ',' +
+           (dyn ? csv_number(r.max_error) : "") + ',' + (r.in_fit ? "true" : "false") + ',' +
+           (r.run.converged ? "true" : "false") + ',' +
+           csv_text(r.note.empty() ? r.run.reason : r.note) + ',' + csv_number(r.run.wall_time_s) +
+           ',' + csv_number(r.run.wall_time_min_s) + ',' + std::to_string(r.run.repeats) + ',' +
+           (dyn ? std::to_string(r.run.steps) : "") + '\n';
+  }
+  return out;
+}
+
+std::string orders_csv(const Sweep& sweep) {
+  std::string out = "scheme,nodes,variable,expected_order,observed_order,points,h_max,h_min,note\n";
+  for (const auto& o : sweep.orders)
+    out += csv_text(o.scheme) + ',' + (o.nodes > 0 ? std::to_string(o.nodes) : "") + ',' +
+           o.variable + ',' + csv_text(o.expected) + ',' + csv_number(o.fit.order) + ',' +
+           std::to_string(o.fit.points) + ',' + csv_number(o.h_max) + ',' + csv_number(o.h_min) +
+           ',' + csv_text(o.fit.note) + '\n';
+  return out;
+}
+
+namespace {
+Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+}  // namespace
+
+Json sweep_json(const Sweep& sweep, const Settings& settings, const std::string& kind) {
+  Json rows = Json::array();
+  for (const auto& r : sweep.rows) {
+    const bool dyn = r.spec.problem == solvers::Problem::dynamics;
+    rows.push_back({{"scheme", r.spec.scheme},
+                    {"role", r.role},
+                    {"nodes", r.spec.nodes},
+                    {"dt", dyn ? Json(r.run.dt) : Json(nullptr)},
+                    {"h", r.h},
+                    {"tip", {r.run.tip.x(), r.run.tip.y(), r.run.tip.z()}},
+                    {"error", number_or_null(r.error)},
+                    {"max_error", dyn ? number_or_null(r.max_error) : Json(nullptr)},
+                    {"in_fit", r.in_fit},
+                    {"converged", r.run.converged},
+                    {"reason", r.note.empty() ? r.run.reason : r.note},
+                    {"wall_time_s", r.run.wall_time_s},
+                    {"wall_time_min_s", r.run.wall_time_min_s},
+                    {"repeats", r.run.repeats},
+                    {"steps", r.run.steps}});
+  }
+  Json orders = Json::array();
+  for (const auto& o : sweep.orders)
+    orders.push_back({{"scheme", o.scheme},
+                      {"nodes", o.nodes > 0 ? Json(o.nodes) : Json(nullptr)},
+                      {"variable", o.variable},
+                      {"expected_order", o.expected},
+                      {"observed_order", number_or_null(o.fit.order)},
+                      {"points", o.fit.points},
+                      {"h_max", number_or_null(o.h_max)},
+                      {"h_min", number_or_null(o.h_min)},
+                      {"note", o.fit.note}});
+  return Json{{"schema", "rodlab.study/1"},
+              {"kind", kind},
+              {"scene", settings.scene.name},
+              {"command_line", settings.command_line},
+              {"settings", settings_json(settings)},
+              {"reference", sweep.reference},
+              {"error_measure", settings.problem == solvers::Problem::statics
+                                    ? "tip position distance from the reference [m]"
+                                    : "tip position distance from the reference at t_end [m]; "
+                                      "max_error: largest over the shared output times"},
+              {"order_fit",
+               {{"rule", "least-squares slope of log(error) against log(h) on the asymptotic "
+                         "range (docs/studies.md)"},
+                {"rounding_floor", sweep.rounding_floor},
+                {"preasymptotic_tolerance", kPreasymptoticTolerance}}},
+              {"rows", rows},
+              {"orders", orders},
+              {"failed_runs", sweep.failed}};
+}
+
+std::string sweep_table(const Sweep& sweep, bool timing) {
+  using A = io::TextTable::Align;
+  io::TextTable t({A::left, A::left, A::right, A::right, A::right, A::right, A::right, A::left});
+  const bool dyn = !sweep.rows.empty() && sweep.rows.front().spec.problem == Problem::dynamics;
+  t.add_row({"scheme", "role", "N", dyn ? "dt [s]" : "", "error [m]",
+             timing ? "median time [s]" : "time [s]", "fit", "status"});
+  t.add_rule();
+  for (const auto& r : sweep.rows) {
+    std::string status = r.run.converged ? "converged" : r.run.reason;
+    if (!r.note.empty()) status = r.note;
+    t.add_row({r.spec.scheme, r.role, std::to_string(r.spec.nodes),
+               dyn ? io::format_number(r.run.dt) : "",
+               std::isfinite(r.error) ? io::format_number(r.error) : "-",
+               io::format_number(r.run.wall_time_s), r.in_fit ? "*" : "", status});
+  }
+  return t.render();
+}
+
+std::string orders_table(const Sweep& sweep) {
+  using A = io::TextTable::Align;
+  io::TextTable t({A::left, A::right, A::right, A::right, A::right, A::left});
+  t.add_row({"scheme", "N", "expected order", "observed order", "points", "note"});
+  t.add_rule();
+  for (const auto& o : sweep.orders)
+    t.add_row({o.scheme, o.nodes > 0 ? std::to_string(o.nodes) : "", o.expected,
+               std::isfinite(o.fit.order) ? io::format_number(o.fit.order) : "-",
+               std::to_string(o.fit.points), o.fit.note});
+  return t.render();
+}
+
+}  // namespace rodlab::validation::study

@@ -1,0 +1,121 @@
+#include "studies/settings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "rodlab/io/atomic_file.hpp"
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
+
+namespace rodlab::validation::study {
+
+std::vector<int> default_nodes(solvers::Problem problem, Refinement refine) {
+  if (problem == solvers::Problem::statics) return {6, 11, 21, 41, 81};
+  if (refine == Refinement::joint) return {6, 11, 21, 41};
+  return {10, 20};
+}
+
+std::vector<int> study_nodes(const Settings& settings) {
+  return settings.nodes.empty() ? default_nodes(settings.problem, settings.refine)
+                                : settings.nodes;
+}
+
+std::vector<double> study_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
+                                int nodes) {
+  if (!settings.dts.empty()) return settings.dts;
+  const auto problem = solvers::dynamics::DynamicProblem::from_scene(settings.scene);
+  const double dt = solvers::dynamics::auto_time_step(problem, scheme.name, nodes);
+  return {dt, dt / 2, dt / 4, dt / 8};
+}
+
+std::vector<double> joint_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
+                                const std::vector<int>& nodes) {
+  const auto problem = solvers::dynamics::DynamicProblem::from_scene(settings.scene);
+  const bool explicit_scheme = !scheme.implicit;  // its auto step is its stability limit
+  const double L = settings.scene.rod.length;
+  const double ds0 = L / (nodes.front() - 1);
+  const double dt0 = settings.dts.empty()
+                         ? solvers::dynamics::auto_time_step(problem, scheme.name, nodes.front())
+                         : settings.dts.front();
+  std::vector<double> steps;
+  for (const int n : nodes) {
+    double dt = dt0 * (L / (n - 1)) / ds0;
+    if (explicit_scheme)
+      dt = std::min(dt, solvers::dynamics::auto_time_step(problem, scheme.name, n));
+    // equal steps that end at t_end (what the run uses, so the output times nest)
+    dt = settings.t_end / std::ceil(settings.t_end / dt * (1.0 - 1e-12));
+    steps.push_back(dt);
+  }
+  return steps;
+}
+
+std::string_view to_string(Refinement refine) {
+  return refine == Refinement::joint ? "joint" : "time";
+}
+
+std::vector<solvers::SchemeInfo> available_schemes(solvers::Problem problem) {
+  std::vector<solvers::SchemeInfo> out;
+  for (const auto& s : solvers::all_schemes())
+    if (s.problem == problem) out.push_back(s);
+  return out;
+}
+
+bool scheme_available(std::string_view name) {
+  const auto s = solvers::find_scheme(name);
+  return s.has_value();
+}
+
+namespace {
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+Json settings_json(const Settings& s) {
+  Json schemes = Json::array();
+  for (const auto& scheme : s.schemes) schemes.push_back(std::string(scheme.name));
+  return Json{{"scene_file", s.scene_path},
+              {"scene_hash", std::to_string(std::hash<std::string>{}(file_text(s.scene_path)))},
+              {"overrides", s.overrides},
+              {"scene", s.scene.name},
+              {"problem", std::string(solvers::to_string(s.problem))},
+              {"schemes", schemes},
+              {"nodes", study_nodes(s)},
+              {"dt", s.dts},
+              {"refine", std::string(to_string(s.refine))},
+              {"reference", s.reference ? Json(*s.reference) : Json(nullptr)},
+              {"solver_tol", s.tol},
+              {"t_end", s.t_end},
+              {"repeats", s.repeats}};
+}
+
+void write_output(const std::string& dir, const std::string& name, const std::string& content) {
+  std::filesystem::create_directories(dir);
+  io::write_file_atomically(std::filesystem::path(dir) / name, content);
+}
+
+std::string csv_number(double v) {
+  if (!std::isfinite(v)) return "";
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+std::string csv_text(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c == '\n' ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+}  // namespace rodlab::validation::study

@@ -1,0 +1,71 @@
+#pragma once
+// What a study runs on: the checked scene, the schemes (from the catalogue), the resolutions
+// and the run settings. cmd_study.cpp fills it from the command line; the validation report
+// can fill it directly and call the study functions (study_convergence.hpp,
+// study_work_precision.hpp, study_stability.hpp).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "rodlab/scene/scene.hpp"
+#include "rodlab/solvers/schemes.hpp"
+
+namespace rodlab::validation::study {
+
+using Json = nlohmann::json;
+
+/// How a dynamics convergence study refines: the step at each N (time), or N and the step
+/// together with dt proportional to ds, against ida at a finer N (joint).
+enum class Refinement { time, joint };
+
+struct Settings {
+  std::string scene_path;
+  std::vector<std::string> overrides;  ///< the --set texts (part of the scene's identity)
+  scene::Scene scene;
+  solvers::Problem problem = solvers::Problem::statics;
+  std::vector<solvers::SchemeInfo> schemes;  ///< available schemes of `problem`
+  std::vector<int> nodes;                    ///< empty: default_nodes()
+  std::vector<double> dts;                   ///< dynamics; empty: auto / 2^k per scheme and N
+  Refinement refine = Refinement::time;      ///< dynamics convergence studies
+  std::optional<std::string> reference;      ///< --reference; nullopt: the default
+  double tol = 1e-10;                        ///< nonlinear solver tolerance of every run
+  double t_end = 0.0;                        ///< dynamics run length [s]
+  int repeats = 1;                           ///< timed repeats (work-precision)
+  std::vector<double> moduli;                ///< stability: Young's moduli [Pa]
+  std::string command_line;
+};
+
+/// Statics: 6, 11, 21, 41, 81 (ds halves); dynamics: 10, 20; joint refinement: 6, 11, 21, 41.
+std::vector<int> default_nodes(solvers::Problem problem, Refinement refine = Refinement::time);
+/// The nodes of the study (settings.nodes or the default).
+std::vector<int> study_nodes(const Settings& settings);
+/// The time steps of `scheme` at N nodes: settings.dts, or auto_time_step / {1, 2, 4, 8}.
+std::vector<double> study_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
+                                int nodes);
+/// Joint refinement: the step of `scheme` at each of `nodes` (ascending): dt_0 (settings.dts'
+/// first value, or the scheme's auto_time_step at the coarsest N) times ds / ds_0, made an
+/// exact divisor of t_end; for a scheme whose auto step is a stability limit (variational),
+/// never above its limit at that N.
+std::vector<double> joint_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
+                                const std::vector<int>& nodes);
+/// "time" or "joint".
+std::string_view to_string(Refinement refine);
+/// The available schemes of a problem class, in catalogue order.
+std::vector<solvers::SchemeInfo> available_schemes(solvers::Problem problem);
+/// Whether the catalogue marks the scheme of that name available.
+bool scheme_available(std::string_view name);
+
+/// The settings that determine a study's runs (for study.json and for reusing measurements).
+Json settings_json(const Settings& settings);
+
+/// Writes `content` to DIR/name atomically (DIR is created if missing).
+void write_output(const std::string& dir, const std::string& name, const std::string& content);
+
+/// "%.17g" (files), "" for NaN.
+std::string csv_number(double v);
+/// A CSV field, quoted when it contains a comma, quote or newline.
+std::string csv_text(const std::string& text);
+
+}  // namespace rodlab::validation::study
