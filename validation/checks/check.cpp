@@ -125,4 +125,9 @@ std::vector<fs::path> scene_files(const fs::path& dir) {
   return out;
 }
 
+Check with_topic(Check check, std::string topic) {
+  check.topic = std::move(topic);
+  return check;
+}
+
 }  // namespace rodlab::validation

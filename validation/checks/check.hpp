@@ -26,6 +26,9 @@ struct Check {
   std::string reference;           ///< where the reference comes from
   bool passed = false;
   std::string detail;  ///< why it failed, or extra context
+  /// A headline check: the report's summary topic it belongs to (report/summary.hpp: order,
+  /// reference, energy, structure, recommend); empty for the details only.
+  std::string topic;
 
   /// |measured - expected| / |expected| (absolute when expected is 0); 0 without expected.
   double relative_error() const;
@@ -40,6 +43,8 @@ Check upper_bound_check(std::string name, double measured, double bound, std::st
 /// Passes when lo <= measured <= hi; expected = (lo + hi) / 2, tolerance = the half-width
 /// relative to it.
 Check range_check(std::string name, double measured, double lo, double hi, std::string reference);
+/// The check as a headline of the report's summary topic (Check::topic).
+Check with_topic(Check check, std::string topic);
 /// A yes/no check (measured 1 or 0, expected 1).
 Check boolean_check(std::string name, bool ok, std::string reference, std::string detail = {});
 

@@ -25,6 +25,7 @@
 #include "rodlab/result/oscillation.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
+#include "rodlab/solvers/schemes.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
 #include "checks/dynamics_runs.hpp"
@@ -120,7 +121,7 @@ void undamped_energy(const ValidationContext& context, DynamicsData& data,
                                       5e-4, "symplectic scheme: O(dt^2) oscillation, no drift (E0 = strain energy of the release)");
     bounded.passed = bounded.passed && r.converged;
     bounded.detail += "; " + run_text(r);
-    checks.push_back(bounded);
+    checks.push_back(with_topic(bounded, "energy"));
     checks.push_back(upper_bound_check(
         tag + ": max |E - E0| second half / first half", second / first, 1.5,
         "no secular drift: the second half of the run errs no more than the first (1.5 allows for "
@@ -148,9 +149,9 @@ void kelvin_voigt_damping(const ValidationContext& /*context*/, DynamicsData& da
                                   1e-12, "Kelvin-Voigt dissipation int xi_dot^T V xi_dot >= 0: mechanical energy never increases");
   never.passed = never.passed && r.converged;
   never.detail += "; " + run_text(r);
-  checks.push_back(never);
-  checks.push_back(upper_bound_check(tag + ": ledger |total - E0| / E0", ledger_drift(r) / E0, 0.01,
-                                     "energy balance T + U + dissipated = E0 (issue #5: 1 %)"));
+  checks.push_back(with_topic(never, "energy"));
+  checks.push_back(with_topic(upper_bound_check(tag + ": ledger |total - E0| / E0", ledger_drift(r) / E0, 0.01,
+                                     "energy balance T + U + dissipated = E0 (issue #5: 1 %)"), "energy"));
   const double left = r.energy.kinetic.back() + r.energy.strain.back();
   checks.push_back(upper_bound_check(tag + ": energy left at 0.3 s / E0", left / E0, 0.9,
                                      "the damping acts (measured 0.78 in tests/dynamics)"));
@@ -274,7 +275,7 @@ void static_limit(const ValidationContext& context, DynamicsData& data,
                         "chebyshev statics at N = 24 (exact to 1e-13 m); design order 2 (trapezoid tip cell)");
   c.passed = c.passed && converged;
   c.detail += "; " + runs;
-  checks.push_back(c);
+  checks.push_back(with_topic(c, "order"));
   checks.push_back(upper_bound_check(
       "variational static limit: |tip - tip_static| / L at N = " + std::to_string(ns[k]),
       errors[k] / kL, 1e-4, "chebyshev statics at N = 24 (measured 1.27e-6 m at N = 21)"));
@@ -311,12 +312,12 @@ void scheme_agreement(const ValidationContext& /*context*/, DynamicsData& data,
         max_tip_difference(r, var) / kL, a.tip_tolerance, std::string(a.reference));
     c.passed = c.passed && r.converged;
     c.detail += "; " + run_text(r);
-    checks.push_back(c);
-    checks.push_back(upper_bound_check(
+    checks.push_back(with_topic(c, solvers::find_scheme(name)->reference ? "reference" : ""));
+    checks.push_back(with_topic(upper_bound_check(
         "viscous cantilever (alpha = 300, N = 20): " + name + " ledger |total - total(0)| / max |P|",
         ledger_drift(r) / scale, a.ledger_tolerance,
         "energy balance T + U + P + dissipated = const (energy.hpp, every scheme); tolerance: " +
-            std::string(a.energy_reference)));
+            std::string(a.energy_reference)), "energy"));
     checks.back().passed = checks.back().passed && r.converged;
     const double rise = max_mechanical_rise(r);
     checks.push_back(upper_bound_check(
@@ -431,7 +432,7 @@ void variational_converges_to_ida(const ValidationContext& context, DynamicsData
                         "variational is first order in dt against it (ratio 2)");
   c.passed = c.passed && ref.converged;
   c.detail += "; " + run_text(ref);
-  checks.push_back(c);
+  checks.push_back(with_topic(c, "reference"));
   checks.push_back(upper_bound_check(
       "variational -> ida: tip difference / L at dt = " + io::format_number(dts.back()) + " s",
       diff.back() / kL, 1e-4, "ida (rtol = atol = 1e-10)"));
@@ -452,7 +453,7 @@ void ida_undamped_energy(const ValidationContext& context, DynamicsData& data,
                               "global error at rtol = atol = 1e-10");
   c.passed = c.passed && r.converged;
   c.detail += "; " + run_text(r);
-  checks.push_back(c);
+  checks.push_back(with_topic(c, "energy"));
   data.add("ida undamped, N = 10", r, scale);
 }
 
@@ -468,7 +469,7 @@ void ida_damped_ledger(const ValidationContext& /*context*/, DynamicsData& data,
                               "T + U + P + dissipated - work_in = const of the semi-discrete system");
   c.passed = c.passed && r.converged;
   c.detail += "; " + run_text(r);
-  checks.push_back(c);
+  checks.push_back(with_topic(c, "energy"));
   checks.push_back(upper_bound_check(
       "ida damped (alpha = 300, N = 10, 1 s): largest rise of T + U + P between outputs [J]",
       max_mechanical_rise(r), 1e-12, "Kelvin-Voigt dissipation >= 0"));
@@ -494,9 +495,10 @@ std::vector<Check> dynamics_checks(const ValidationContext& context) {
   std::vector<Check> checks;
   DynamicsData data;
   for (const Case run : kCases) run(context, data, checks);
-  checks.push_back(upper_bound_check("max |det R - 1| over every dynamics run above",
-                                     data.worst_det, 1e-12,
-                                     "group structure: exactly 1 (worst: " + data.worst_det_case + ")"));
+  checks.push_back(with_topic(
+      upper_bound_check("max |det R - 1| over every dynamics run above", data.worst_det, 1e-12,
+                        "group structure: exactly 1 (worst: " + data.worst_det_case + ")"),
+      "structure"));
   data.emit(context);
   return checks;
 }

@@ -130,6 +130,7 @@ void spectral_error(Statics& f, const StaticProblem& P, const lie::Vector3& ref,
   Check c = relative_check("gravity cantilever (" + model + "): " + name + " tip error at N = 24 [m]",
                            (tip(r) - ref).norm(), 0.0, 1e-9, "rkmk-rk4 at N = 801");
   c.passed = r.converged && c.measured <= 1e-9;
+  c.topic = "order";
   f.checks.push_back(c);
 }
 
@@ -155,6 +156,7 @@ void observed_order(Statics& f, const StaticProblem& P, const lie::Vector3& ref,
                            observed, design, 0.15 / design, "design order; reference rkmk-rk4 at N = 801");
   if (s.order == ">=4") c.passed = observed >= 3.85;
   c.passed = c.passed && r1.converged && r2.converged;
+  c.topic = "order";
   f.checks.push_back(c);
 }
 
@@ -226,6 +228,7 @@ void references_agree(Statics& f) {
   Check chk = relative_check("gravity cantilever: |kinsol (N = 200) - chebyshev (N = 24)| [m]", diff, 0.0,
                              0.0, "KINSOL reference against spectral collocation");
   chk.passed = diff <= 1e-9;
+  chk.topic = "reference";
   f.checks.push_back(chk);
 }
 
@@ -234,10 +237,12 @@ void structure(Statics& f) {
   Check det = relative_check("max |det R - 1| over every statics solve above", f.solve.worst_det, 0.0, 0.0,
                              "group structure: exactly 1");
   det.passed = f.solve.worst_det <= 1e-13;
+  det.topic = "structure";
   f.checks.push_back(det);
   Check orth = relative_check("max ||R^T R - I|| over every statics solve above", f.solve.worst_orth, 0.0, 0.0,
                               "group structure: exactly 0");
   orth.passed = f.solve.worst_orth <= 1e-13;
+  orth.topic = "structure";
   f.checks.push_back(orth);
 }
 

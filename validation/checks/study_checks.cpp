@@ -138,6 +138,7 @@ study::Recommendation recommend_checks(std::vector<Check>& out, const std::strin
       name + ": recommended run, re-run, error vs independent reference [m]", err, tol, reference);
   c.detail = "recommendation: " + candidate_text(b) + " (" + std::to_string(rec.candidates) +
              " candidates); " + c.detail;
+  c.topic = "recommend";
   out.push_back(std::move(c));
   bool on_front = false;
   for (std::size_t i = 0; i < sweep.rows.size(); ++i) {
@@ -348,6 +349,7 @@ Check joint_order_check(const study::SchemeOrder& o, const std::string& label, d
                         o.fit.order, lo, hi, why);
   c.detail += "; " + std::to_string(o.fit.points) + " points" +
               (o.fit.note.empty() ? "" : ", " + o.fit.note);
+  c.topic = "order";
   return c;
 }
 
@@ -425,78 +427,117 @@ void dynamics_joint_convergence_staggered(const ValidationContext& context,
 
 // --- stability map ---------------------------------------------------------------------------
 
-void stability_map(const ValidationContext& context, std::vector<Check>& out) {
+/// The viscous cantilever's stability study settings, without schemes.
+study::Settings stability_settings(const ValidationContext& context) {
   study::Settings s;
   s.scene_path = (context.scenes_dir / "viscous-cantilever.yaml").string();
   s.scene = io::load_scene(s.scene_path);
   s.problem = Problem::dynamics;
   s.tol = 1e-10;
-  for (const auto& scheme : study::available_schemes(Problem::dynamics))
-    if (!scheme.reference && !scheme.implicit) s.schemes.push_back(scheme);
   s.nodes = {10, 20, 40};
   s.moduli = {1e4, 1e6, 1e8};
-  const study::Executor two{.jobs = 2};  // no timing here: the results do not depend on jobs
-  if (!s.schemes.empty()) {
-    const study::Stability st = study::run_stability(s, two);
-    DataSet d{.name = "studies_stability_explicit",
-              .description =
-                  "largest stable step of the explicit schemes (bisection to 0.5 %, "
-                  "runs of 2000 steps from the viscous cantilever's initial state) "
-                  "against N and E (G scaled with E), and the computed limit",
-              .columns = {"series", "scheme", "E", "log10_E", "nodes", "dt_linear", "dt_max",
-                          "dt_unstable", "safety_factor", "runs"}};
-    for (const auto& l : st.limits) {
-      const double ratio = l.dt_linear > 0 ? l.dt_max / l.dt_linear : double(NAN);
-      d.add_row({l.scheme + " E=" + io::format_number(l.E) + " Pa", l.scheme, l.E, std::log10(l.E),
-                 l.nodes, l.dt_linear, l.dt_max, l.dt_unstable, ratio, l.runs});
-      Check c = range_check("stability map: " + l.scheme + " measured / computed limit, N = " +
-                                std::to_string(l.nodes) + ", E = " + io::format_number(l.E) + " Pa",
-                            ratio, 0.95, 1.05,
-                            "Jury criterion with the von Neumann omega_max "
-                            "(variational_stable_step, docs/dynamics.md)");
-      c.detail += "; dt_max " + io::format_number(l.dt_max) + " s, computed " +
-                  io::format_number(l.dt_linear) + " s, " + std::to_string(l.runs) + " runs" +
-                  (l.note.empty() ? "" : "; " + l.note);
-      out.push_back(std::move(c));
-    }
-    d.figures.push_back({.name = "studies_stability_map",
-                         .kind = "map",
-                         .x = "nodes",
-                         .y = {"safety_factor", "log10_E"},
-                         .title = "Stability map of the explicit scheme",
-                         .xlabel = "N (nodes)",
-                         .ylabel = "log10 E [Pa]",
-                         .caption = "Stability map: the largest stable step of the explicit "
-                                    "scheme measured by bisection (2000-step runs of the viscous "
-                                    "cantilever), divided by the computed limit "
-                                    "variational_stable_step, for N = 10, 20, 40 and E = 1e4, "
-                                    "1e6, 1e8 Pa (colour: the ratio, 1 = the computed limit)."});
-    d.figures.push_back({.name = "studies_stability_dt",
-                         .kind = "loglog",
-                         .x = "nodes",
-                         .y = {"dt_max", "dt_linear"},
-                         .series = "series",
-                         .title = "Explicit step limit against N",
-                         .xlabel = "N (nodes)",
-                         .ylabel = "dt [s]",
-                         .caption = "The measured largest stable step (dt_max) and the computed "
-                                    "limit (dt_linear) of the explicit scheme against N for "
-                                    "each E.",
-                         .style = "lines+markers"});
-    context.emit(std::move(d));
-  }
+  return s;
+}
 
+/// Two jobs: the stability results do not depend on them (no timing is checked here).
+const study::Executor kTwoJobs{.jobs = 2};
+
+/// The explicit scheme's measured stability limit against the computed one, over N and E.
+void explicit_stability_map(const ValidationContext& context, std::vector<Check>& out) {
+  study::Settings s = stability_settings(context);
+  for (const auto& scheme : study::available_schemes(Problem::dynamics))
+    if (!scheme.reference && !scheme.implicit) s.schemes.push_back(scheme);
+  if (s.schemes.empty()) return;
+  const study::Stability st = study::run_stability(s, kTwoJobs);
+  DataSet d{.name = "studies_stability_explicit",
+            .description =
+                "largest stable step of the explicit schemes (bisection to 0.5 %, "
+                "runs of 2000 steps from the viscous cantilever's initial state) "
+                "against N and E (G scaled with E), and the computed limit",
+            .columns = {"series", "scheme", "E", "log10_E", "nodes", "dt_linear", "dt_max",
+                        "dt_unstable", "safety_factor", "runs"}};
+  for (const auto& l : st.limits) {
+    const double ratio = l.dt_linear > 0 ? l.dt_max / l.dt_linear : double(NAN);
+    d.add_row({l.scheme + " E=" + io::format_number(l.E) + " Pa", l.scheme, l.E, std::log10(l.E),
+               l.nodes, l.dt_linear, l.dt_max, l.dt_unstable, ratio, l.runs});
+    Check c = range_check("stability map: " + l.scheme + " measured / computed limit, N = " +
+                              std::to_string(l.nodes) + ", E = " + io::format_number(l.E) + " Pa",
+                          ratio, 0.95, 1.05,
+                          "Jury criterion with the von Neumann omega_max "
+                          "(variational_stable_step, docs/dynamics.md)");
+    c.detail += "; dt_max " + io::format_number(l.dt_max) + " s, computed " +
+                io::format_number(l.dt_linear) + " s, " + std::to_string(l.runs) + " runs" +
+                (l.note.empty() ? "" : "; " + l.note);
+    out.push_back(std::move(c));
+  }
+  d.figures.push_back({.name = "studies_stability_map",
+                       .kind = "map",
+                       .x = "nodes",
+                       .y = {"safety_factor", "log10_E"},
+                       .title = "Stability map of the explicit scheme",
+                       .xlabel = "N (nodes)",
+                       .ylabel = "log10 E [Pa]",
+                       .caption = "Stability map: the largest stable step of the explicit "
+                                  "scheme measured by bisection (2000-step runs of the viscous "
+                                  "cantilever), divided by the computed limit "
+                                  "variational_stable_step, for N = 10, 20, 40 and E = 1e4, "
+                                  "1e6, 1e8 Pa (colour: the ratio, 1 = the computed limit)."});
+  d.figures.push_back({.name = "studies_stability_dt",
+                       .kind = "loglog",
+                       .x = "nodes",
+                       .y = {"dt_max", "dt_linear"},
+                       .series = "series",
+                       .title = "Explicit step limit against N",
+                       .xlabel = "N (nodes)",
+                       .ylabel = "dt [s]",
+                       .caption = "The measured largest stable step (dt_max) and the computed "
+                                  "limit (dt_linear) of the explicit scheme against N for "
+                                  "each E.",
+                       .style = "lines+markers"});
+  context.emit(std::move(d));
+}
+
+/// The checks of one implicit scheme's step scan: it runs at its dt auto, and single shooting
+/// has a lower step bound where collocation has none.
+void scan_checks(const study::ScanSummary& sum, std::vector<Check>& out) {
+  const std::string range =
+      "runs from " + io::format_number(sum.smallest_ok) + " to " + io::format_number(sum.largest_ok) +
+      " s; first failure below: " + io::format_number(sum.first_failed_below) +
+      " s, above: " + io::format_number(sum.first_failed_above) + " s (0: none)";
+  out.push_back(
+      boolean_check("stability scan: " + sum.scheme + " runs at its dt auto (" +
+                        io::format_number(sum.dt_auto) + " s), N = " + std::to_string(sum.nodes),
+                    sum.smallest_ok > 0.0,
+                    "auto_time_step (time_step.hpp): the step `dt: auto` chooses", range));
+  if (sum.scheme == "implicit-midpoint")
+    out.push_back(
+        boolean_check("stability scan: implicit-midpoint (single shooting) has a lower "
+                      "step bound, N = " +
+                          std::to_string(sum.nodes),
+                      sum.first_failed_below > 0.0,
+                      "the thesis: single shooting fails for small dt (Algorithm 2)", range));
+  else if (sum.scheme == "implicit-midpoint-collocation")
+    out.push_back(boolean_check(
+        "stability scan: implicit-midpoint-collocation has no lower step "
+        "bound down to 2e-6 s, N = " +
+            std::to_string(sum.nodes),
+        sum.first_failed_below == 0.0 && sum.smallest_ok > 0.0 && sum.smallest_ok <= 2e-6,
+        "collocation's global BVP solve (docs/dynamics.md)", range));
+
+}
+
+/// The implicit schemes' step scans from their dt auto, down and up.
+void implicit_step_scans(const ValidationContext& context, std::vector<Check>& out) {
   // The implicit schemes' step scans: runs of min(t_end, 2000 dt), t_end 0.1 s (--full: 0.3 s,
   // and N = 40 too).
-  study::Settings si = s;
-  si.schemes.clear();
+  study::Settings si = stability_settings(context);
   for (const auto& scheme : study::available_schemes(Problem::dynamics))
     if (!scheme.reference && scheme.implicit) si.schemes.push_back(scheme);
   if (si.schemes.empty()) return;
   si.nodes = context.full ? std::vector<int>{10, 20, 40} : std::vector<int>{10, 20};
   si.t_end = context.full ? 0.3 : 0.1;
   const std::string runs = "runs of min(" + io::format_number(si.t_end) + " s, 2000 dt)";
-  const study::Stability st = study::run_stability(si, two);
+  const study::Stability st = study::run_stability(si, kTwoJobs);
   DataSet d{.name = "studies_stability_implicit",
             .description =
                 "step scans of the implicit schemes on the viscous cantilever: from "
@@ -508,31 +549,7 @@ void stability_map(const ValidationContext& context, std::vector<Check>& out) {
   for (const auto& p : st.scan)
     d.add_row({p.scheme + " N=" + std::to_string(p.nodes), p.scheme, p.nodes, p.dt,
                std::log10(p.dt), p.direction, p.converged ? 1 : 0, p.steps, p.reason});
-  for (const auto& sum : st.summaries) {
-    const std::string range =
-        "runs from " + io::format_number(sum.smallest_ok) + " to " + io::format_number(sum.largest_ok) +
-        " s; first failure below: " + io::format_number(sum.first_failed_below) +
-        " s, above: " + io::format_number(sum.first_failed_above) + " s (0: none)";
-    out.push_back(
-        boolean_check("stability scan: " + sum.scheme + " runs at its dt auto (" +
-                          io::format_number(sum.dt_auto) + " s), N = " + std::to_string(sum.nodes),
-                      sum.smallest_ok > 0.0,
-                      "auto_time_step (time_step.hpp): the step `dt: auto` chooses", range));
-    if (sum.scheme == "implicit-midpoint")
-      out.push_back(
-          boolean_check("stability scan: implicit-midpoint (single shooting) has a lower "
-                        "step bound, N = " +
-                            std::to_string(sum.nodes),
-                        sum.first_failed_below > 0.0,
-                        "the thesis: single shooting fails for small dt (Algorithm 2)", range));
-    else if (sum.scheme == "implicit-midpoint-collocation")
-      out.push_back(boolean_check(
-          "stability scan: implicit-midpoint-collocation has no lower step "
-          "bound down to 2e-6 s, N = " +
-              std::to_string(sum.nodes),
-          sum.first_failed_below == 0.0 && sum.smallest_ok > 0.0 && sum.smallest_ok <= 2e-6,
-          "collocation's global BVP solve (docs/dynamics.md)", range));
-  }
+  for (const auto& sum : st.summaries) scan_checks(sum, out);
   d.figures.push_back({.name = "studies_stability_scan",
                        .kind = "map",
                        .x = "log10_dt",
@@ -557,7 +574,8 @@ std::vector<Check> study_checks(const ValidationContext& context) {
   dynamics_work_precision(context, out);
   dynamics_joint_convergence(context, out);
   dynamics_joint_convergence_staggered(context, out);
-  stability_map(context, out);
+  explicit_stability_map(context, out);
+  implicit_step_scans(context, out);
   return out;
 }
 

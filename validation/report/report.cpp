@@ -10,6 +10,8 @@
 
 #include "rodlab/io/text_format.hpp"
 
+#include "report/summary.hpp"
+
 namespace rodlab::validation {
 namespace {
 namespace fs = std::filesystem;
@@ -136,6 +138,7 @@ std::string to_json(const ValidationReport& r) {
     j["reference"] = c.reference;
     j["passed"] = c.passed;
     if (!c.detail.empty()) j["detail"] = c.detail;
+    if (!c.topic.empty()) j["topic"] = c.topic;
     checks.push_back(std::move(j));
   }
   Json families = Json::array();
@@ -182,6 +185,25 @@ std::string to_json(const ValidationReport& r) {
   return json.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
+namespace {
+
+/// The headline checks by topic (report/summary.hpp).
+std::string markdown_summary(const ValidationReport& r) {
+  std::string out = "\n## Summary\n";
+  for (const auto& topic : kSummaryTopics) {
+    const auto checks = topic_checks(r, topic.key);
+    if (checks.empty()) continue;
+    out += "\n### " + std::string(topic.title) + "\n\n| result | check | measured | reference |\n"
+           "|---|---|---|---|\n";
+    for (const Check* c : checks)
+      out += "| " + std::string(c->passed ? "pass" : "**FAIL**") + " | " + cell(c->name) + " | " +
+             short_number(c->measured) + " | " + cell(summary_note(*c)) + " |\n";
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string to_markdown(const ValidationReport& r) {
   std::string out = "# rodlab validation report\n\n";
   out += "**" + std::to_string(r.passed()) + " passed, " + std::to_string(r.failed()) +
@@ -194,8 +216,9 @@ std::string to_markdown(const ValidationReport& r) {
       out += "| " + cell(label) + " | " + cell(value) + " |\n";
   }
   out += "| figures | " + cell(figures_text(r.figures)) + " |\n";
+  out += markdown_summary(r);
 
-  for (const auto& family : r.families) {
+  for (const auto& family : report_order(r)) {
     out += "\n## " + family.name + "\n\n" + family.description + "\n";
     out += "\n| result | check | measured | expected | rel. error | tolerance | reference |\n";
     out += "|---|---|---|---|---|---|---|\n";
@@ -284,8 +307,11 @@ std::string html_escape(std::string_view text) {
   return out;
 }
 
-std::string to_html(const ValidationReport& r, const fs::path& out_dir) {
-  const auto e = [](std::string_view s) { return html_escape(s); };
+namespace {
+
+std::string e(std::string_view s) { return html_escape(s); }
+
+std::string html_head(const ValidationReport& r) {
   std::string out =
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
@@ -301,10 +327,12 @@ std::string to_html(const ValidationReport& r, const fs::path& out_dir) {
   out += "<p class=\"note\">This page is self-contained: the figures are embedded. The numbers "
          "behind them are in <code>data/*.csv</code> next to it, every check with full precision "
          "in <code>report.json</code>; <code>report.md</code> has the same tables.</p>\n";
+  return out;
+}
 
-  // Contents.
-  out += "<ul>\n";
-  for (const auto& f : r.families) {
+std::string html_contents(const ValidationReport& r) {
+  std::string out = "<ul>\n<li><a href=\"#summary\">summary</a></li>\n";
+  for (const auto& f : report_order(r)) {
     const auto n = std::count_if(r.checks.begin(), r.checks.end(),
                                  [&](const Check& c) { return c.family == f.name; });
     const auto bad = std::count_if(r.checks.begin(), r.checks.end(), [&](const Check& c) {
@@ -315,73 +343,103 @@ std::string to_html(const ValidationReport& r, const fs::path& out_dir) {
            (bad ? ", <span class=\"fail\">" + std::to_string(bad) + " failed</span>" : "") +
            "</li>\n";
   }
-  out += "<li><a href=\"#provenance\">provenance</a></li>\n</ul>\n";
+  return out + "<li><a href=\"#provenance\">provenance</a></li>\n</ul>\n";
+}
 
-  // Failed checks first, so a reader sees them without scrolling.
-  if (!ok) {
-    out += "<h2>Failed checks</h2>\n<ul>\n";
-    for (const auto& c : r.checks)
-      if (!c.passed)
-        out += "<li><span class=\"fail\">FAIL</span> [" + e(c.family) + "] " + e(c.name) +
-               ": measured " + e(io::format_number(c.measured)) +
-               (c.expected ? ", expected " + e(io::format_number(*c.expected)) : "") + " (" +
-               e(c.reference) + ")" + (c.detail.empty() ? "" : " &mdash; " + e(c.detail)) +
-               "</li>\n";
-    out += "</ul>\n";
-  }
-
-  auto check_rows = [&](const std::string& family) {
-    std::string t =
-        "<table>\n<tr><th>result</th><th>check</th><th>measured</th><th>expected</th>"
-        "<th>rel. error</th><th>tolerance</th><th>reference</th></tr>\n";
-    for (const auto& c : r.checks) {
-      if (c.family != family) continue;
-      t += std::string("<tr") + (c.passed ? "" : " class=\"fail\"") + "><td class=\"" +
-           (c.passed ? "pass\">pass" : "fail\">FAIL") + "</td><td>" + e(c.name) +
-           "</td><td class=\"num\">" + e(io::format_number(c.measured)) + "</td><td class=\"num\">" +
-           (c.expected ? e(io::format_number(*c.expected)) : "") + "</td><td class=\"num\">" +
-           e(io::format_number(c.relative_error())) + "</td><td class=\"num\">" +
-           e(io::format_number(c.tolerance)) + "</td><td>" + e(c.reference) +
-           (c.detail.empty() ? "" : "<br><span class=\"detail\">" + e(c.detail) + "</span>") +
-           "</td></tr>\n";
-    }
-    return t + "</table>\n";
-  };
-
-  for (const auto& f : r.families) {
-    out += "<h2 id=\"family-" + e(f.name) + "\">" + e(f.name) + "</h2>\n<p>" + e(f.description) +
-           "</p>\n";
-    out += check_rows(f.name);
-    for (const auto& d : r.data_sets) {
-      if (d.family != f.name) continue;
-      for (const auto& fig : d.figures) {
-        const auto svg = read_file(out_dir / figure_file(fig));
-        out += "<figure id=\"figure-" + e(fig.name) + "\">\n";
-        if (svg)
-          out += "<img alt=\"" + e(fig.title) + "\" src=\"data:image/svg+xml;base64," +
-                 base64(*svg) + "\">\n";
-        else
-          out += "<p class=\"fail\">figure " + e(figure_file(fig)) + " missing (figures " +
-                 e(figures_text(r.figures)) + ")</p>\n";
-        out += "<figcaption><b>" + e(fig.title) + ".</b> " + e(fig.caption) + " Data: <code>" +
-               e(data_file(d)) + "</code>.</figcaption>\n</figure>\n";
-      }
-      if (d.figures.empty())
-        out += "<p class=\"note\">Data: <code>" + e(data_file(d)) + "</code> &mdash; " +
-               e(d.description) + "</p>\n";
-    }
-  }
-  // Checks of families not listed (a hand-made report).
-  std::vector<std::string> others;
+/// Failed checks first, so a reader sees them without scrolling.
+std::string html_failed(const ValidationReport& r) {
+  if (r.failed() == 0) return "";
+  std::string out = "<h2>Failed checks</h2>\n<ul>\n";
   for (const auto& c : r.checks)
-    if (std::none_of(r.families.begin(), r.families.end(),
-                     [&](const FamilyInfo& f) { return f.name == c.family; }) &&
-        std::find(others.begin(), others.end(), c.family) == others.end())
-      others.push_back(c.family);
-  for (const auto& family : others)
-    out += "<h2>" + e(family) + "</h2>\n" + check_rows(family);
+    if (!c.passed)
+      out += "<li><span class=\"fail\">FAIL</span> [" + e(c.family) + "] " + e(c.name) +
+             ": measured " + e(io::format_number(c.measured)) +
+             (c.expected ? ", expected " + e(io::format_number(*c.expected)) : "") + " (" +
+             e(c.reference) + ")" + (c.detail.empty() ? "" : " &mdash; " + e(c.detail)) +
+             "</li>\n";
+  return out + "</ul>\n";
+}
 
-  out += "<h2 id=\"provenance\">Provenance</h2>\n<table class=\"prov\">\n";
+/// What a reader cites: the headline checks by topic, then links to every figure.
+std::string html_summary(const ValidationReport& r) {
+  std::string out = "<h2 id=\"summary\">Summary</h2>\n";
+  for (const auto& topic : kSummaryTopics) {
+    const auto checks = topic_checks(r, topic.key);
+    if (checks.empty()) continue;
+    out += "<h3>" + e(topic.title) + "</h3>\n<table>\n<tr><th>result</th><th>check</th>"
+           "<th>measured</th><th>reference</th></tr>\n";
+    for (const Check* c : checks)
+      out += std::string("<tr") + (c->passed ? "" : " class=\"fail\"") + "><td class=\"" +
+             (c->passed ? "pass\">pass" : "fail\">FAIL") + "</td><td>" + e(c->name) +
+             "</td><td class=\"num\">" + e(io::format_number(c->measured)) + "</td><td>" +
+             e(summary_note(*c)) + "</td></tr>\n";
+    out += "</table>\n";
+  }
+  std::string figures;
+  for (const auto& d : r.data_sets)
+    for (const auto& fig : d.figures)
+      figures += "<li><a href=\"#figure-" + e(fig.name) + "\">" + e(fig.title) + "</a></li>\n";
+  if (!figures.empty()) out += "<h3>Figures</h3>\n<ul>\n" + figures + "</ul>\n";
+  return out;
+}
+
+std::string html_check_rows(const ValidationReport& r, const std::string& family) {
+  std::string t =
+      "<table>\n<tr><th>result</th><th>check</th><th>measured</th><th>expected</th>"
+      "<th>rel. error</th><th>tolerance</th><th>reference</th></tr>\n";
+  for (const auto& c : r.checks) {
+    if (c.family != family) continue;
+    t += std::string("<tr") + (c.passed ? "" : " class=\"fail\"") + "><td class=\"" +
+         (c.passed ? "pass\">pass" : "fail\">FAIL") + "</td><td>" + e(c.name) +
+         "</td><td class=\"num\">" + e(io::format_number(c.measured)) + "</td><td class=\"num\">" +
+         (c.expected ? e(io::format_number(*c.expected)) : "") + "</td><td class=\"num\">" +
+         e(io::format_number(c.relative_error())) + "</td><td class=\"num\">" +
+         e(io::format_number(c.tolerance)) + "</td><td>" + e(c.reference) +
+         (c.detail.empty() ? "" : "<br><span class=\"detail\">" + e(c.detail) + "</span>") +
+         "</td></tr>\n";
+  }
+  return t + "</table>\n";
+}
+
+std::string html_figures(const ValidationReport& r, const std::string& family,
+                         const fs::path& out_dir) {
+  std::string out;
+  for (const auto& d : r.data_sets) {
+    if (d.family != family) continue;
+    for (const auto& fig : d.figures) {
+      const auto svg = read_file(out_dir / figure_file(fig));
+      out += "<figure id=\"figure-" + e(fig.name) + "\">\n";
+      if (svg)
+        out += "<img alt=\"" + e(fig.title) + "\" src=\"data:image/svg+xml;base64," +
+               base64(*svg) + "\">\n";
+      else
+        out += "<p class=\"fail\">figure " + e(figure_file(fig)) + " missing (figures " +
+               e(figures_text(r.figures)) + ")</p>\n";
+      out += "<figcaption><b>" + e(fig.title) + ".</b> " + e(fig.caption) + " Data: <code>" +
+             e(data_file(d)) + "</code>.</figcaption>\n</figure>\n";
+    }
+    if (d.figures.empty())
+      out += "<p class=\"note\">Data: <code>" + e(data_file(d)) + "</code> &mdash; " +
+             e(d.description) + "</p>\n";
+  }
+  return out;
+}
+
+/// A family's section: its checks (folded away when there are many), then its figures.
+std::string html_family(const ValidationReport& r, const FamilyInfo& f, const fs::path& out_dir) {
+  std::string out = "<h2 id=\"family-" + e(f.name) + "\">" + e(f.name) + "</h2>\n<p>" +
+                    e(f.description) + "</p>\n";
+  const std::string rows = html_check_rows(r, f.name);
+  if (folded(r, f.name))
+    out += "<details><summary>" + std::to_string(family_check_count(r, f.name)) +
+           " checks</summary>\n" + rows + "</details>\n";
+  else
+    out += rows;
+  return out + html_figures(r, f.name, out_dir);
+}
+
+std::string html_provenance(const ValidationReport& r) {
+  std::string out = "<h2 id=\"provenance\">Provenance</h2>\n<table class=\"prov\">\n";
   for (const auto& [label, value] : provenance_rows(r))
     out += "<tr><td>" + e(label) + "</td><td>" +
            (label == "command" ? "<code>" + e(value) + "</code>" : e(value)) + "</td></tr>\n";
@@ -389,8 +447,17 @@ std::string to_html(const ValidationReport& r, const fs::path& out_dir) {
   if (!r.figures.command.empty())
     out += "<tr><td>regenerate figures</td><td><code>" + e(r.figures.command) +
            "</code></td></tr>\n";
-  out += "</table>\n</body>\n</html>\n";
-  return out;
+  return out + "</table>\n";
+}
+
+}  // namespace
+
+std::string to_html(const ValidationReport& r, const fs::path& out_dir) {
+  std::string out = html_head(r) + html_contents(r) + html_failed(r) + html_summary(r);
+  for (const auto& f : report_order(r)) out += html_family(r, f, out_dir);
+  for (const auto& family : unlisted_families(r))  // checks of families not listed (by hand)
+    out += "<h2>" + e(family) + "</h2>\n" + html_check_rows(r, family);
+  return out + html_provenance(r) + "</body>\n</html>\n";
 }
 
 }  // namespace rodlab::validation
