@@ -180,6 +180,56 @@ std::optional<Json> reusable_measurements(const std::string& dir, const Json& se
   return std::nullopt;
 }
 
+/// The Pareto front of a work-precision sweep, one line per run on it.
+void print_pareto(const study::Sweep& sweep, const std::vector<bool>& pareto,
+                  const study::Settings& settings) {
+  std::cout << study::sweep_table(sweep, true) << "\nPareto front (error against median wall time):\n";
+  for (std::size_t i = 0; i < sweep.rows.size(); ++i)
+    if (pareto[i])
+      std::cout << "  " << sweep.rows[i].spec.scheme << " N = " << sweep.rows[i].spec.nodes
+                << (settings.problem == Problem::dynamics
+                        ? " dt = " + io::format_number(sweep.rows[i].run.dt)
+                        : std::string())
+                << ": " << io::format_number(sweep.rows[i].error) << " m in "
+                << io::format_number(sweep.rows[i].run.wall_time_s) << " s\n";
+}
+
+/// `study recommend` on measured (or reused) work-precision rows: prints and writes
+/// recommendation.json; true when a run meets the target.
+bool recommend_and_write(const Json& wp, bool reused, const study::Settings& settings,
+                         const std::string& dir, double target, std::optional<double> budget_ms) {
+  const auto rec = study::recommend(wp["rows"], target, budget_ms);
+  const std::string budget_text =
+      budget_ms ? " within " + io::format_number(*budget_ms) + " ms per run" : std::string();
+  std::cout << "\nrecommendation for a tip error <= " << io::format_number(target) << " m"
+            << budget_text << " (" << rec.candidates << " measured runs on this machine):\n";
+  if (rec.best) {
+    std::cout << "  " << describe(*rec.best) << '\n';
+  } else {
+    std::cout << "  nothing reaches " << io::format_number(target) << " m" << budget_text << '\n';
+    if (rec.fastest_meeting_tol)
+      std::cout << "  fastest that meets the tolerance: " << describe(*rec.fastest_meeting_tol)
+                << '\n';
+    else if (rec.most_accurate)
+      std::cout << "  most accurate measured: " << describe(*rec.most_accurate) << '\n';
+    std::cout << "  (refine with --nodes / --dt, or relax --tol / --budget-ms)\n";
+  }
+  const Json out{{"schema", "rodlab.study/1"},
+                 {"kind", "recommend"},
+                 {"scene", settings.scene.name},
+                 {"command_line", settings.command_line},
+                 {"tol", target},
+                 {"budget_ms", budget_ms ? Json(*budget_ms) : Json(nullptr)},
+                 {"measurements", reused ? "reused" : "measured"},
+                 {"candidates", rec.candidates},
+                 {"recommendation", candidate_json(rec.best)},
+                 {"fastest_meeting_tol", candidate_json(rec.fastest_meeting_tol)},
+                 {"most_accurate", candidate_json(rec.most_accurate)}};
+  study::write_output(dir, "recommendation.json", out.dump(2) + "\n");
+  std::cout << "written: " << dir << "/recommendation.json\n";
+  return rec.best.has_value();
+}
+
 int run_sweep_kind(const std::string& kind, const study::Settings& settings,
                    const study::Executor& executor, const std::string& dir,
                    std::optional<double> target, std::optional<double> budget_ms) {
@@ -206,18 +256,7 @@ int run_sweep_kind(const std::string& kind, const study::Settings& settings,
       wp = study::work_precision_json(sweep, pareto, settings);
       study::write_output(dir, "work_precision.csv", study::work_precision_csv(sweep, pareto));
       study::write_output(dir, "study.json", wp.dump(2) + "\n");
-      if (kind == "work-precision") {
-        std::cout << study::sweep_table(sweep, true) << "\nPareto front (error against median "
-                                                        "wall time):\n";
-        for (std::size_t i = 0; i < sweep.rows.size(); ++i)
-          if (pareto[i])
-            std::cout << "  " << sweep.rows[i].spec.scheme << " N = " << sweep.rows[i].spec.nodes
-                      << (settings.problem == Problem::dynamics
-                              ? " dt = " + io::format_number(sweep.rows[i].run.dt)
-                              : std::string())
-                      << ": " << io::format_number(sweep.rows[i].error) << " m in "
-                      << io::format_number(sweep.rows[i].run.wall_time_s) << " s\n";
-      }
+      if (kind == "work-precision") print_pareto(sweep, pareto, settings);
     }
     if (sweep.failed > 0) {
       std::cout << '\n' << sweep.failed << " run(s) did not converge (see the reason column)\n";
@@ -231,36 +270,59 @@ int run_sweep_kind(const std::string& kind, const study::Settings& settings,
     std::cout << "reusing the measurements in " << dir << "/study.json (same scene and settings)\n";
   }
 
-  const auto rec = study::recommend(wp["rows"], *target, budget_ms);
-  const std::string budget_text =
-      budget_ms ? " within " + io::format_number(*budget_ms) + " ms per run" : std::string();
-  std::cout << "\nrecommendation for a tip error <= " << io::format_number(*target) << " m"
-            << budget_text << " (" << rec.candidates << " measured runs on this machine):\n";
-  if (rec.best) {
-    std::cout << "  " << describe(*rec.best) << '\n';
-  } else {
-    std::cout << "  nothing reaches " << io::format_number(*target) << " m" << budget_text << '\n';
-    if (rec.fastest_meeting_tol)
-      std::cout << "  fastest that meets the tolerance: " << describe(*rec.fastest_meeting_tol)
-                << '\n';
-    else if (rec.most_accurate)
-      std::cout << "  most accurate measured: " << describe(*rec.most_accurate) << '\n';
-    std::cout << "  (refine with --nodes / --dt, or relax --tol / --budget-ms)\n";
-  }
-  const Json out{{"schema", "rodlab.study/1"},
-                 {"kind", "recommend"},
-                 {"scene", settings.scene.name},
-                 {"command_line", settings.command_line},
-                 {"tol", *target},
-                 {"budget_ms", budget_ms ? Json(*budget_ms) : Json(nullptr)},
-                 {"measurements", measured ? "reused" : "measured"},
-                 {"candidates", rec.candidates},
-                 {"recommendation", candidate_json(rec.best)},
-                 {"fastest_meeting_tol", candidate_json(rec.fastest_meeting_tol)},
-                 {"most_accurate", candidate_json(rec.most_accurate)}};
-  study::write_output(dir, "recommendation.json", out.dump(2) + "\n");
-  std::cout << "written: " << dir << "/recommendation.json\n";
-  return rec.best ? status : kNotConverged;
+  return recommend_and_write(wp, measured.has_value(), settings, dir, *target, budget_ms) ? status
+                                                                                     : kNotConverged;
+}
+
+/// --nodes and --dt against the problem class and the refinement.
+void check_grid_options(OptionReader& reader, std::optional<Problem> problem,
+                        const std::optional<std::vector<int>>& nodes,
+                        const std::optional<std::vector<double>>& dts, bool joint) {
+  if (problem == Problem::dynamics && nodes)
+    for (const int n : *nodes)
+      if (n < 3) {
+        reader.problem("--nodes: the dynamics schemes need N >= 3 (got " + std::to_string(n) +
+                       ")");
+        break;
+      }
+  if (dts && dts->size() > 1 && joint)
+    reader.problem("--dt: --refine joint starts from one step (dt at the coarsest N), got " +
+                   std::to_string(dts->size()));
+}
+
+/// A dynamics study's run length: --t-end, else dynamics.t_end, else 1 s for stability; every
+/// --dt must fit in it.
+double run_length(const study::Settings& settings, const std::string& kind,
+                  std::optional<double> t_end, const std::string& scene_path) {
+  const auto& scene = settings.scene;
+  const auto scene_t_end = scene.dynamics ? scene.dynamics->t_end : std::nullopt;
+  double length = 0.0;
+  if (t_end)
+    length = *t_end;
+  else if (scene_t_end)
+    length = *scene_t_end;
+  else if (kind == "stability")
+    length = 1.0;
+  else
+    throw UsageError("--t-end: no run length; give --t-end T or set dynamics.t_end in " +
+                     scene_path);
+  for (const double dt : settings.dts)
+    if (dt > length)
+      throw UsageError("--dt: the time step " + io::format_number(dt) +
+                       " s exceeds the run length " + io::format_number(length) + " s");
+  return length;
+}
+
+/// `rodlab study stability`: runs, writes the two tables and study.json, prints the summary.
+int run_stability_kind(const study::Settings& settings, const study::Executor& executor,
+                       const std::string& dir) {
+  const auto stab = study::run_stability(settings, executor);
+  if (!executor.processes->root()) return kSolved;
+  study::write_output(dir, "stability_explicit.csv", study::explicit_csv(stab));
+  study::write_output(dir, "stability_implicit.csv", study::implicit_csv(stab));
+  study::write_output(dir, "study.json", study::stability_json(stab, settings).dump(2) + "\n");
+  std::cout << study::stability_table(stab) << "\nwritten: " << dir << '\n';
+  return kSolved;
 }
 
 int run(const Invocation& inv) {
@@ -289,16 +351,7 @@ int run(const Invocation& inv) {
     problem = check_problem_class(reader, kind);
     check_kind_options(reader, kind);
   }
-  if (problem == Problem::dynamics && nodes)
-    for (const int n : *nodes)
-      if (n < 3) {
-        reader.problem("--nodes: the dynamics schemes need N >= 3 (got " + std::to_string(n) +
-                       ")");
-        break;
-      }
-  if (dts && dts->size() > 1 && inv.args.value("--refine") == "joint")
-    reader.problem("--dt: --refine joint starts from one step (dt at the coarsest N), got " +
-                   std::to_string(dts->size()));
+  check_grid_options(reader, problem, nodes, dts, inv.args.value("--refine") == "joint");
   reader.finish();
   const scene::Scene scene = load_checked_scene(options);
 
@@ -322,22 +375,8 @@ int run(const Invocation& inv) {
   settings.tol = (!recommend && tol) ? *tol : scene.solver.tol;
   settings.repeats = (kind == "work-precision" || recommend) ? repeats.value_or(kDefaultRepeats) : 1;
   settings.command_line = inv.command_line;
-  if (settings.problem == Problem::dynamics) {
-    const auto scene_t_end = scene.dynamics ? scene.dynamics->t_end : std::nullopt;
-    if (t_end)
-      settings.t_end = *t_end;
-    else if (scene_t_end)
-      settings.t_end = *scene_t_end;
-    else if (kind == "stability")
-      settings.t_end = 1.0;
-    else
-      throw UsageError("--t-end: no run length; give --t-end T or set dynamics.t_end in " +
-                       options.scene_path);
-    for (const double dt : settings.dts)
-      if (dt > settings.t_end)
-        throw UsageError("--dt: the time step " + io::format_number(dt) +
-                         " s exceeds the run length " + io::format_number(settings.t_end) + " s");
-  }
+  if (settings.problem == Problem::dynamics)
+    settings.t_end = run_length(settings, kind, t_end, options.scene_path);
   const std::string dir =
       out_dir ? out_dir->string()
               : "out/study-" + std::string(recommend ? "work-precision" : kind);
@@ -348,13 +387,7 @@ int run(const Invocation& inv) {
   if (kind != "stability")
     return run_sweep_kind(kind, settings, executor, dir, tol, budget);
 
-  const auto stab = study::run_stability(settings, executor);
-  if (!processes.root()) return kSolved;
-  study::write_output(dir, "stability_explicit.csv", study::explicit_csv(stab));
-  study::write_output(dir, "stability_implicit.csv", study::implicit_csv(stab));
-  study::write_output(dir, "study.json", study::stability_json(stab, settings).dump(2) + "\n");
-  std::cout << study::stability_table(stab) << "\nwritten: " << dir << '\n';
-  return kSolved;
+  return run_stability_kind(settings, executor, dir);
 }
 
 }  // namespace

@@ -146,6 +146,76 @@ double max_common_error(const RunRecord& run, const RunRecord& ref, double t_end
 
 }  // namespace
 
+namespace {
+
+/// Each study row's error (and max error over time) against its reference row.
+void measure_errors(const Settings& s, const Plan& plan, Sweep& sweep) {
+  for (std::size_t i = 0; i < sweep.rows.size(); ++i) {
+    auto& row = sweep.rows[i];
+    row.error = row.max_error = kNaN;
+    if (row.role == "study" && !row.run.converged) ++sweep.failed;
+    const int r = plan.reference_of[i];
+    if (r < 0) continue;
+    const auto& ref = sweep.rows[static_cast<std::size_t>(r)].run;
+    if (!ref.converged) {
+      row.note = "the reference did not converge: " + ref.reason;
+      continue;
+    }
+    if (!row.run.converged) continue;
+    row.error = (row.run.tip - ref.tip).norm();
+    if (s.problem == Problem::dynamics)
+      row.max_error = std::max(row.error, max_common_error(row.run, ref, s.t_end));
+  }
+}
+
+/// The observed order of one group of study rows (one scheme, or one scheme and N).
+SchemeOrder fit_group(const Settings& s, bool joint, const std::pair<std::string, int>& key,
+                      const std::vector<std::size_t>& members, Sweep& sweep) {
+  std::vector<FitPoint> points;
+  for (const auto i : members) {
+    const auto& row = sweep.rows[i];
+    points.push_back({row.h, row.error, row.run.converged && std::isfinite(row.error)});
+  }
+  SchemeOrder o;
+  o.scheme = key.first;
+  o.nodes = key.second;
+  o.variable = s.problem == Problem::statics ? "ds" : joint ? "ds (dt ~ ds)" : "dt";
+  if (const auto info = solvers::find_scheme(key.first)) o.expected = std::string(info->order);
+  // the shooting schemes on the staggered grid (solver.grid) are second order in s too
+  if (s.scene.solver.grid == std::optional<std::string>("staggered") &&
+      (key.first == "implicit-midpoint" || key.first == "bdf-alpha"))
+    o.expected = "2 (t) / 2 (s)";
+  o.fit = fit_order(points, sweep.rounding_floor);
+  o.h_max = 0.0;
+  o.h_min = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    if (!o.fit.used[k]) continue;
+    sweep.rows[members[k]].in_fit = true;
+    o.h_max = std::max(o.h_max, points[k].h);
+    o.h_min = std::min(o.h_min, points[k].h);
+  }
+  if (o.fit.points == 0) o.h_min = o.h_max = kNaN;
+  return o;
+}
+
+/// Orders: statics and joint refinement per scheme (in ds), dynamics per scheme and N (in dt).
+void fit_orders(const Settings& s, bool joint, Sweep& sweep) {
+  std::map<std::pair<std::string, int>, std::vector<std::size_t>> groups;
+  std::vector<std::pair<std::string, int>> order;
+  for (std::size_t i = 0; i < sweep.rows.size(); ++i) {
+    const auto& row = sweep.rows[i];
+    if (row.role != "study") continue;
+    const std::pair<std::string, int> key{row.spec.scheme,
+                                          s.problem == Problem::statics || joint ? 0
+                                                                                 : row.spec.nodes};
+    if (!groups.count(key)) order.push_back(key);
+    groups[key].push_back(i);
+  }
+  for (const auto& key : order) sweep.orders.push_back(fit_group(s, joint, key, groups[key], sweep));
+}
+
+}  // namespace
+
 Sweep run_sweep(const Settings& s, const Executor& executor) {
   const bool joint = s.problem == Problem::dynamics && s.refine == Refinement::joint;
   const Plan plan = s.problem == Problem::statics ? plan_statics(s)
@@ -172,63 +242,8 @@ Sweep run_sweep(const Settings& s, const Executor& executor) {
     sweep.rows.push_back(std::move(row));
   }
   sweep.rounding_floor = rounding_floor(scale);
-  for (std::size_t i = 0; i < sweep.rows.size(); ++i) {
-    auto& row = sweep.rows[i];
-    row.error = row.max_error = kNaN;
-    if (row.role == "study" && !row.run.converged) ++sweep.failed;
-    const int r = plan.reference_of[i];
-    if (r < 0) continue;
-    const auto& ref = sweep.rows[static_cast<std::size_t>(r)].run;
-    if (!ref.converged) {
-      row.note = "the reference did not converge: " + ref.reason;
-      continue;
-    }
-    if (!row.run.converged) continue;
-    row.error = (row.run.tip - ref.tip).norm();
-    if (s.problem == Problem::dynamics)
-      row.max_error = std::max(row.error, max_common_error(row.run, ref, s.t_end));
-  }
-
-  // Orders: statics and joint refinement per scheme (in ds), dynamics per scheme and N (in dt).
-  std::map<std::pair<std::string, int>, std::vector<std::size_t>> groups;
-  std::vector<std::pair<std::string, int>> order;
-  for (std::size_t i = 0; i < sweep.rows.size(); ++i) {
-    const auto& row = sweep.rows[i];
-    if (row.role != "study") continue;
-    const std::pair<std::string, int> key{row.spec.scheme,
-                                          s.problem == Problem::statics || joint ? 0
-                                                                                 : row.spec.nodes};
-    if (!groups.count(key)) order.push_back(key);
-    groups[key].push_back(i);
-  }
-  for (const auto& key : order) {
-    const auto& members = groups[key];
-    std::vector<FitPoint> points;
-    for (const auto i : members) {
-      const auto& row = sweep.rows[i];
-      points.push_back({row.h, row.error, row.run.converged && std::isfinite(row.error)});
-    }
-    SchemeOrder o;
-    o.scheme = key.first;
-    o.nodes = key.second;
-    o.variable = s.problem == Problem::statics ? "ds" : joint ? "ds (dt ~ ds)" : "dt";
-    if (const auto info = solvers::find_scheme(key.first)) o.expected = std::string(info->order);
-    // the shooting schemes on the staggered grid (solver.grid) are second order in s too
-    if (s.scene.solver.grid == std::optional<std::string>("staggered") &&
-        (key.first == "implicit-midpoint" || key.first == "bdf-alpha"))
-      o.expected = "2 (t) / 2 (s)";
-    o.fit = fit_order(points, sweep.rounding_floor);
-    o.h_max = 0.0;
-    o.h_min = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < members.size(); ++k) {
-      if (!o.fit.used[k]) continue;
-      sweep.rows[members[k]].in_fit = true;
-      o.h_max = std::max(o.h_max, points[k].h);
-      o.h_min = std::min(o.h_min, points[k].h);
-    }
-    if (o.fit.points == 0) o.h_min = o.h_max = kNaN;
-    sweep.orders.push_back(std::move(o));
-  }
+  measure_errors(s, plan, sweep);
+  fit_orders(s, joint, sweep);
   return sweep;
 }
 
