@@ -136,7 +136,7 @@ void check_kind_options(OptionReader& reader, const std::string& kind) {
 /// The schemes of the study: --schemes, else every scheme of the problem class.
 std::vector<solvers::SchemeInfo> chosen_schemes(const OptionReader& reader, Problem problem) {
   const auto text = reader.text("--schemes");
-  if (!text) return study::available_schemes(problem);
+  if (!text) return study::schemes_of(problem);
   std::vector<solvers::SchemeInfo> out;
   for (const auto& name : split_list(*text)) {
     const auto scheme = *solvers::find_scheme(name);

@@ -1,8 +1,8 @@
 // The "studies" family of `rodlab validate`: the studies of `rodlab study` (docs/studies.md) on
 // two example scenes, through the same functions (study::run_sweep, study::pareto_front,
 // study::recommend, study::run_stability):
-//   - work-precision of every available statics scheme on scenes/cantilever-gravity.yaml
-//     (N = 6 .. 81, against kinsol at N = 324) and of every available non-reference dynamics
+//   - work-precision of every statics scheme on scenes/cantilever-gravity.yaml
+//     (N = 6 .. 81, against kinsol at N = 324) and of every non-reference dynamics
 //     scheme on scenes/viscous-cantilever.yaml (N = 10, 20, dt = dt auto / 1, 2, 4, 8, a short
 //     run, against ida at the same N): the diagrams (error against median wall time, Pareto
 //     front and the recommendations marked), and `study recommend` answers for a statics and a
@@ -173,7 +173,7 @@ void statics_work_precision(const ValidationContext& context, std::vector<Check>
   s.scene_path = (context.scenes_dir / "cantilever-gravity.yaml").string();
   s.scene = io::load_scene(s.scene_path);
   s.problem = Problem::statics;
-  s.schemes = study::available_schemes(Problem::statics);
+  s.schemes = study::schemes_of(Problem::statics);
   s.nodes = {6, 11, 21, 41, 81};
   s.tol = 1e-10;
   s.repeats = context.full ? 5 : 3;
@@ -224,7 +224,7 @@ void dynamics_work_precision(const ValidationContext& context, std::vector<Check
   s.scene_path = (context.scenes_dir / "viscous-cantilever.yaml").string();
   s.scene = io::load_scene(s.scene_path);
   s.problem = Problem::dynamics;
-  for (const auto& scheme : study::available_schemes(Problem::dynamics))
+  for (const auto& scheme : study::schemes_of(Problem::dynamics))
     if (!scheme.reference) s.schemes.push_back(scheme);
   if (s.schemes.empty()) return;
   s.nodes = {10, 20};
@@ -239,13 +239,11 @@ void dynamics_work_precision(const ValidationContext& context, std::vector<Check
       "dynamics work-precision (viscous-cantilever, " + io::format_number(s.t_end) + " s)";
   front_checks(out, what, sweep, pareto);
 
-  const bool ida = study::scheme_available("ida");
   // Independent reference: ida at the same N with rtol = atol = 1e-12 (the sweep's: 1e-10,
-  // output at the finest step); without ida, the sweep's own (Richardson) reference.
+  // output at the finest step).
   const auto error = [&](const study::Candidate& c) {
     const auto r = study::run_case(
         s.scene, {c.scheme, Problem::dynamics, c.nodes, *c.dt, s.t_end, s.tol, 1, false});
-    if (!ida) return c.error;
     solvers::dynamics::DynamicSolveOptions o;
     o.scheme = "ida";
     o.nodes = c.nodes;
@@ -259,11 +257,9 @@ void dynamics_work_precision(const ValidationContext& context, std::vector<Check
     return (r.tip - ref.tip_position.back()).norm();
   };
   const std::string reference =
-      ida ? "ida at the same N, rtol = atol = 1e-12, tip at t_end (the sweep's reference: ida, "
-            "tol 1e-10; the error of the shooting schemes is mostly their different spatial "
-            "discretisation)"
-          : "the sweep's reference (ida not available): " +
-                sweep.reference.value("description", std::string{});
+      "ida at the same N, rtol = atol = 1e-12, tip at t_end (the sweep's reference: ida, "
+      "tol 1e-10; the error of the shooting schemes is mostly their different spatial "
+      "discretisation)";
   std::vector<study::Candidate> chosen;
   for (const double tol : {1e-4}) {
     const auto rec = recommend_checks(out, what, sweep, pareto, s, tol, error, reference);
@@ -368,11 +364,10 @@ FigureSpec joint_figure(const std::string& name, const std::string& title,
           .style = "lines+markers"};
 }
 
-/// Every available dynamics scheme: the discretisation error shrinks at each scheme's observed
+/// Every dynamics scheme: the discretisation error shrinks at each scheme's observed
 /// order (issue #4).
 void dynamics_joint_convergence(const ValidationContext& context, std::vector<Check>& out) {
-  if (!study::scheme_available("ida")) return;
-  JointStudy j = joint_convergence_study(context, study::available_schemes(Problem::dynamics), {},
+  JointStudy j = joint_convergence_study(context, study::schemes_of(Problem::dynamics), {},
                                          "studies_joint_convergence", "every dynamics scheme",
                                          " (viscous-cantilever)", out);
   // Expected: the spatial order, since dt ~ ds keeps the time error of the second-order schemes
@@ -405,7 +400,6 @@ void dynamics_joint_convergence(const ValidationContext& context, std::vector<Ch
 /// 1.91 at fine dt, tests/dynamics/test_staggered_shooting.cpp).
 void dynamics_joint_convergence_staggered(const ValidationContext& context,
                                           std::vector<Check>& out) {
-  if (!study::scheme_available("ida")) return;
   JointStudy j = joint_convergence_study(
       context, {*solvers::find_scheme("implicit-midpoint"), *solvers::find_scheme("bdf-alpha")},
       {"solver.grid=staggered"}, "studies_joint_convergence_staggered",
@@ -445,7 +439,7 @@ const study::Executor kTwoJobs{.jobs = 2};
 /// The explicit scheme's measured stability limit against the computed one, over N and E.
 void explicit_stability_map(const ValidationContext& context, std::vector<Check>& out) {
   study::Settings s = stability_settings(context);
-  for (const auto& scheme : study::available_schemes(Problem::dynamics))
+  for (const auto& scheme : study::schemes_of(Problem::dynamics))
     if (!scheme.reference && !scheme.implicit) s.schemes.push_back(scheme);
   if (s.schemes.empty()) return;
   const study::Stability st = study::run_stability(s, kTwoJobs);
@@ -531,7 +525,7 @@ void implicit_step_scans(const ValidationContext& context, std::vector<Check>& o
   // The implicit schemes' step scans: runs of min(t_end, 2000 dt), t_end 0.1 s (--full: 0.3 s,
   // and N = 40 too).
   study::Settings si = stability_settings(context);
-  for (const auto& scheme : study::available_schemes(Problem::dynamics))
+  for (const auto& scheme : study::schemes_of(Problem::dynamics))
     if (!scheme.reference && scheme.implicit) si.schemes.push_back(scheme);
   if (si.schemes.empty()) return;
   si.nodes = context.full ? std::vector<int>{10, 20, 40} : std::vector<int>{10, 20};

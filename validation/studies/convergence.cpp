@@ -49,7 +49,7 @@ Plan plan_statics(const Settings& s) {
 
 Plan plan_dynamics(const Settings& s) {
   Plan plan;
-  const bool use_ida = s.reference ? *s.reference == "ida" : scheme_available("ida");
+  const bool use_ida = !s.reference || *s.reference == "ida";
   for (const int n : study_nodes(s)) {
     int ref_index = -1;
     if (use_ida) {

@@ -57,16 +57,11 @@ std::string_view to_string(Refinement refine) {
   return refine == Refinement::joint ? "joint" : "time";
 }
 
-std::vector<solvers::SchemeInfo> available_schemes(solvers::Problem problem) {
+std::vector<solvers::SchemeInfo> schemes_of(solvers::Problem problem) {
   std::vector<solvers::SchemeInfo> out;
   for (const auto& s : solvers::all_schemes())
     if (s.problem == problem) out.push_back(s);
   return out;
-}
-
-bool scheme_available(std::string_view name) {
-  const auto s = solvers::find_scheme(name);
-  return s.has_value();
 }
 
 namespace {

@@ -25,7 +25,7 @@ struct Settings {
   std::vector<std::string> overrides;  ///< the --set texts (part of the scene's identity)
   scene::Scene scene;
   solvers::Problem problem = solvers::Problem::statics;
-  std::vector<solvers::SchemeInfo> schemes;  ///< available schemes of `problem`
+  std::vector<solvers::SchemeInfo> schemes;  ///< schemes of `problem` to study
   std::vector<int> nodes;                    ///< empty: default_nodes()
   std::vector<double> dts;                   ///< dynamics; empty: auto / 2^k per scheme and N
   Refinement refine = Refinement::time;      ///< dynamics convergence studies
@@ -52,10 +52,8 @@ std::vector<double> joint_steps(const Settings& settings, const solvers::SchemeI
                                 const std::vector<int>& nodes);
 /// "time" or "joint".
 std::string_view to_string(Refinement refine);
-/// The available schemes of a problem class, in catalogue order.
-std::vector<solvers::SchemeInfo> available_schemes(solvers::Problem problem);
-/// Whether the catalogue marks the scheme of that name available.
-bool scheme_available(std::string_view name);
+/// The schemes of a problem class, in catalogue order.
+std::vector<solvers::SchemeInfo> schemes_of(solvers::Problem problem);
 
 /// The settings that determine a study's runs (for study.json and for reusing measurements).
 Json settings_json(const Settings& settings);
