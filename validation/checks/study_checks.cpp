@@ -364,8 +364,7 @@ FigureSpec joint_figure(const std::string& name, const std::string& title,
           .style = "lines+markers"};
 }
 
-/// Every dynamics scheme: the discretisation error shrinks at each scheme's observed
-/// order (issue #4).
+/// Every dynamics scheme: the discretisation error shrinks at each scheme's observed order.
 void dynamics_joint_convergence(const ValidationContext& context, std::vector<Check>& out) {
   JointStudy j = joint_convergence_study(context, study::schemes_of(Problem::dynamics), {},
                                          "studies_joint_convergence", "every dynamics scheme",
@@ -393,8 +392,7 @@ void dynamics_joint_convergence(const ValidationContext& context, std::vector<Ch
 
 /// The shooting schemes on the staggered grid (solver.grid: staggered, docs/dynamics.md): the
 /// same joint refinement, where the Euler grid is first order in s (1.08, 1.07) and these are
-/// second order: the issue's "improve where the thesis reports limits". Measured (session 5):
-/// implicit-midpoint 1.87 (errors 2.2e-4 .. 8.7e-6 m, against 2.5e-3 m at N = 41 on the Euler
+/// second order. Measured (docs/validation.md): implicit-midpoint 1.87 (errors 2.2e-4 .. 8.7e-6 m, against 2.5e-3 m at N = 41 on the Euler
 /// grid), bdf-alpha 1.48 (4.5e-4 .. 1.9e-5 m: its damping of the stiff viscous modes at the
 /// coarse steps leaves the first points pre-asymptotic; against ida on the same grid it reaches
 /// 1.91 at fine dt, tests/dynamics/test_staggered_shooting.cpp).
