@@ -217,10 +217,9 @@ DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& 
   solve.output_every = options.output_every.value_or(dynamics.output_every);
   solve.rtol = options.rtol.value_or(solve.rtol);
   solve.atol = options.atol.value_or(solve.atol);
-  solve.alpha = options.alpha.value_or(scene.solver.alpha.value_or(solve.alpha));
-  const auto grid = options.grid ? options.grid : scene.solver.grid;
-  if (grid) solve.grid = *solvers::dynamics::shooting_grid_from_name(*grid);
-  solve.initial = dynamics.initial;
+  solvers::dynamics::apply_scene_options(scene, solve);  // then the command line over the scene
+  if (options.alpha) solve.alpha = *options.alpha;
+  if (options.grid) solve.grid = *solvers::dynamics::shooting_grid_from_name(*options.grid);
   return run;
 }
 

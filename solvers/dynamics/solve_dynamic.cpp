@@ -86,6 +86,16 @@ double energy_budget(const DynamicProblem& problem, const Energy& e0, const Ener
 
 }  // namespace
 
+void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options) {
+  options.alpha = scene.solver.alpha.value_or(options.alpha);
+  if (scene.solver.grid) {
+    const auto grid = shooting_grid_from_name(*scene.solver.grid);
+    if (!grid) throw std::invalid_argument("solver.grid: must be euler or staggered");
+    options.grid = *grid;
+  }
+  if (scene.dynamics) options.initial = scene.dynamics->initial;
+}
+
 result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolveOptions& options) {
   if (options.nodes < 3) throw std::invalid_argument("nodes must be >= 3");
   if (!(options.dt > 0.0) || !std::isfinite(options.dt))

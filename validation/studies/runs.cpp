@@ -45,11 +45,7 @@ void run_dynamic(const scene::Scene& scene, const RunSpec& spec, RunRecord& out,
   if (!spec.keep_series) options.output_every = 1 << 30;  // the last step is always recorded
   options.tol = spec.tol;
   options.max_iterations = std::max(scene.solver.max_iterations, 50);
-  if (scene.dynamics) options.initial = scene.dynamics->initial;
-  // the scene's scheme options (bdf-alpha's alpha, the shooting grid), as `rodlab dynamic`
-  options.alpha = scene.solver.alpha.value_or(options.alpha);
-  if (scene.solver.grid)
-    options.grid = *solvers::dynamics::shooting_grid_from_name(*scene.solver.grid);
+  solvers::dynamics::apply_scene_options(scene, options);  // as `rodlab dynamic`
   for (int r = 0; r < std::max(1, spec.repeats); ++r) {
     auto result = solvers::dynamics::solve_dynamic(scene, options);
     times.push_back(result.wall_time_s);

@@ -29,6 +29,10 @@ struct DynamicSolveOptions {
   scene::Initial initial = scene::Initial::straight;
 };
 
+/// The scheme options a scene sets (solver.alpha, solver.grid) and its initial state
+/// (dynamics.initial), over the defaults: what `rodlab dynamic` and the studies take from it.
+void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options);
+
 /// Runs the simulation. Throws std::invalid_argument for bad options or unsupported scene
 /// features; a failed step or an instability ends the run with converged = false and the reason.
 result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolveOptions& options);
