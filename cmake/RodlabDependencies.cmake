@@ -14,6 +14,9 @@ endfunction()
 find_package(Eigen3 3.4 QUIET NO_MODULE)
 rodlab_require_found(Eigen3_FOUND "Eigen 3.4 (linear algebra)" libeigen3-dev)
 
+find_package(fmt QUIET)
+rodlab_require_found(fmt_FOUND "fmt (numbers in error messages)" libfmt-dev)
+
 find_package(yaml-cpp QUIET)
 rodlab_require_found(yaml-cpp_FOUND "yaml-cpp (scene files)" libyaml-cpp-dev)
 

@@ -8,6 +8,7 @@ cd "$(dirname "$0")/.."
 packages=(
   cmake make g++ pkg-config        # toolchain
   libeigen3-dev                    # linear algebra
+  libfmt-dev                       # formatting numbers in error messages
   libsundials-dev                  # KINSOL, IDA (built with KLU)
   libsuitesparse-dev               # KLU sparse LU
   libgsl-dev                       # special functions, quadrature

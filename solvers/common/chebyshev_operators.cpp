@@ -9,14 +9,15 @@
 
 #include <Eigen/LU>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::solvers {
 namespace {
 
 using std::numbers::pi;
 
 void check_points(int n) {
-  if (n < 2)
-    throw std::invalid_argument("Chebyshev-Lobatto operators need at least 2 points, got " + std::to_string(n));
+  RODLAB_THROW_UNLESS(n >= 2, "Chebyshev-Lobatto operators need at least 2 points, got {}", n);
 }
 
 /// (-1)^j / c_j: the barycentric weights of the points (c_0 = c_m = 2), up to a common factor.

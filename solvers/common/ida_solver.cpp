@@ -8,6 +8,8 @@
 
 #include <ida/ida.h>
 
+#include "rodlab/check.hpp"
+
 #include "sundials_support.hpp"
 
 namespace rodlab::solvers {
@@ -56,7 +58,7 @@ std::string ida_flag_name(long flag) {
   }
   // IDAGetReturnFlagName returns a malloc'ed string that the caller frees.
   char* name = IDAGetReturnFlagName(flag);
-  if (!name) return "IDA flag " + std::to_string(flag);
+  if (!name) return rodlab::format("IDA flag {}", flag);
   std::string out(name);
   std::free(name);
   return out;
@@ -64,7 +66,7 @@ std::string ida_flag_name(long flag) {
 
 std::string idals_flag_name(long flag) {
   char* name = IDAGetLinReturnFlagName(flag);
-  if (!name) return "IDALS flag " + std::to_string(flag);
+  if (!name) return rodlab::format("IDALS flag {}", flag);
   std::string out(name);
   std::free(name);
   return out;
@@ -72,12 +74,12 @@ std::string idals_flag_name(long flag) {
 
 void check_ida(int flag, const char* call) {
   if (flag != IDA_SUCCESS)
-    throw std::runtime_error(std::string("IDA: ") + call + " failed with " + ida_flag_name(flag));
+    throw std::runtime_error(rodlab::format("IDA: {} failed with {}", call, ida_flag_name(flag)));
 }
 
 void check_idals(int flag, const char* call) {
   if (flag != IDALS_SUCCESS)
-    throw std::runtime_error(std::string("IDA: ") + call + " failed with " + idals_flag_name(flag));
+    throw std::runtime_error(rodlab::format("IDA: {} failed with {}", call, idals_flag_name(flag)));
 }
 
 }  // namespace
@@ -174,17 +176,16 @@ IdaSolver::IdaSolver(const SparseMatrix& pattern, Residual residual, Jacobian ja
     : impl_(std::make_unique<Impl>(pattern)) {
   if (!residual || !jacobian) throw std::invalid_argument("IdaSolver: empty residual or Jacobian");
   const auto n = pattern.rows();
-  if (options.atol.size() != n)
-    throw std::invalid_argument("IdaSolver: atol: expected size " + std::to_string(n) + ", got " +
-                                std::to_string(options.atol.size()));
+  RODLAB_THROW_UNLESS(options.atol.size() == n, "IdaSolver: atol: expected size {}, got {}", n,
+                      options.atol.size());
   if (!options.atol.allFinite() || !(options.atol.minCoeff() > 0.0))
     throw std::invalid_argument("IdaSolver: atol must be finite and > 0");
-  if (!(options.rtol > 0.0) || !std::isfinite(options.rtol))
-    throw std::invalid_argument("IdaSolver: rtol must be > 0, got " + std::to_string(options.rtol));
-  if (options.max_steps < 1)
-    throw std::invalid_argument("IdaSolver: max_steps must be >= 1, got " + std::to_string(options.max_steps));
-  if (options.max_order < 1 || options.max_order > 5)
-    throw std::invalid_argument("IdaSolver: max_order must be 1..5, got " + std::to_string(options.max_order));
+  RODLAB_THROW_UNLESS(options.rtol > 0.0 && std::isfinite(options.rtol),
+                      "IdaSolver: rtol must be > 0, got {:g}", options.rtol);
+  RODLAB_THROW_UNLESS(options.max_steps >= 1, "IdaSolver: max_steps must be >= 1, got {}",
+                      options.max_steps);
+  RODLAB_THROW_UNLESS(options.max_order >= 1 && options.max_order <= 5,
+                      "IdaSolver: max_order must be 1..5, got {}", options.max_order);
   if (!(options.max_step >= 0.0) || !(options.initial_step >= 0.0))
     throw std::invalid_argument("IdaSolver: max_step and initial_step must be >= 0");
 
@@ -201,9 +202,8 @@ IdaSolver::IdaSolver(const SparseMatrix& pattern, Residual residual, Jacobian ja
   view(d.yp.get()).setZero();
   view(d.atol.get()) = options.atol;
   if (options.id.size() != 0) {
-    if (options.id.size() != n)
-      throw std::invalid_argument("IdaSolver: id: expected size " + std::to_string(n) + ", got " +
-                                  std::to_string(options.id.size()));
+    RODLAB_THROW_UNLESS(options.id.size() == n, "IdaSolver: id: expected size {}, got {}", n,
+                        options.id.size());
     for (Eigen::Index i = 0; i < n; ++i)
       if (options.id[i] != 0.0 && options.id[i] != 1.0)
         throw std::invalid_argument("IdaSolver: id entries must be 0 (algebraic) or 1");
@@ -237,9 +237,9 @@ int IdaSolver::size() const { return impl_->pattern.size(); }
 void IdaSolver::initialize(double t0, const Vector& y0, const Vector& yp0) {
   Impl& d = *impl_;
   const auto n = static_cast<Eigen::Index>(d.pattern.size());
-  if (y0.size() != n || yp0.size() != n)
-    throw std::invalid_argument("IdaSolver::initialize: expected y0 and yp0 of size " + std::to_string(n) +
-                                ", got " + std::to_string(y0.size()) + " and " + std::to_string(yp0.size()));
+  RODLAB_THROW_UNLESS(y0.size() == n && yp0.size() == n,
+                      "IdaSolver::initialize: expected y0 and yp0 of size {}, got {} and {}", n,
+                      y0.size(), yp0.size());
   if (!std::isfinite(t0) || !y0.allFinite() || !yp0.allFinite())
     throw std::invalid_argument("IdaSolver::initialize: t0, y0 and yp0 must be finite");
   view(d.y.get()) = y0;
@@ -267,9 +267,9 @@ void IdaSolver::initialize(double t0, const Vector& y0, const Vector& yp0) {
 IdaStats IdaSolver::advance(double tout) {
   Impl& d = *impl_;
   if (!d.initialized) throw std::logic_error("IdaSolver::advance: initialize() was not called");
-  if (!std::isfinite(tout) || !(tout > d.t))
-    throw std::invalid_argument("IdaSolver::advance: tout = " + std::to_string(tout) +
-                                " must be finite and after the current time " + std::to_string(d.t));
+  RODLAB_THROW_UNLESS(std::isfinite(tout) && tout > d.t,
+                      "IdaSolver::advance: tout = {:g} must be finite and after the current time {:g}",
+                      tout, d.t);
   void* mem = d.memory.get();
   const IdaStats before = d.counters();
   d.error = nullptr;
@@ -293,8 +293,8 @@ IdaStats IdaSolver::advance(double tout) {
     case IDA_VECTOROP_ERR:
     case IDA_CONTEXT_ERR:
       // Set-up errors, not integration failures.
-      throw std::runtime_error("IDA: IDASolve failed with " + ida_flag_name(flag) +
-                               (d.message.empty() ? "" : " (" + d.message + ")"));
+      throw std::runtime_error(rodlab::format("IDA: IDASolve failed with {}{}", ida_flag_name(flag),
+                                              d.message.empty() ? "" : " (" + d.message + ")"));
     default: break;
   }
   IdaStats s = d.counters();

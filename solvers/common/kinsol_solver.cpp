@@ -6,6 +6,8 @@
 
 #include <kinsol/kinsol.h>
 
+#include "rodlab/check.hpp"
+
 #include "kept_klu_solver.hpp"
 #include "sundials_support.hpp"
 
@@ -45,7 +47,7 @@ std::string kin_flag_name(long flag) {
   }
   // KINGetReturnFlagName returns a malloc'ed string that the caller frees.
   char* name = KINGetReturnFlagName(flag);
-  if (!name) return "KINSOL flag " + std::to_string(flag);
+  if (!name) return rodlab::format("KINSOL flag {}", flag);
   std::string out(name);
   std::free(name);
   return out;
@@ -53,7 +55,7 @@ std::string kin_flag_name(long flag) {
 
 std::string kinls_flag_name(long flag) {
   char* name = KINGetLinReturnFlagName(flag);
-  if (!name) return "KINLS flag " + std::to_string(flag);
+  if (!name) return rodlab::format("KINLS flag {}", flag);
   std::string out(name);
   std::free(name);
   return out;
@@ -61,12 +63,13 @@ std::string kinls_flag_name(long flag) {
 
 void check_kin(int flag, const char* call) {
   if (flag != KIN_SUCCESS)
-    throw std::runtime_error(std::string("KINSOL: ") + call + " failed with " + kin_flag_name(flag));
+    throw std::runtime_error(rodlab::format("KINSOL: {} failed with {}", call, kin_flag_name(flag)));
 }
 
 void check_kinls(int flag, const char* call) {
   if (flag != KINLS_SUCCESS)
-    throw std::runtime_error(std::string("KINSOL: ") + call + " failed with " + kinls_flag_name(flag));
+    throw std::runtime_error(
+        rodlab::format("KINSOL: {} failed with {}", call, kinls_flag_name(flag)));
 }
 
 }  // namespace
@@ -152,23 +155,21 @@ KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacob
   Impl& d = *impl_;
   const auto n = static_cast<Eigen::Index>(d.pattern.size());
   auto expect_size = [&](const Vector& v, const char* what) {
-    if (v.size() != n)
-      throw std::invalid_argument(std::string("KinsolSolver::solve: ") + what + ": expected size " +
-                                  std::to_string(n) + ", got " + std::to_string(v.size()));
+    RODLAB_THROW_UNLESS(v.size() == n, "KinsolSolver::solve: {}: expected size {}, got {}", what,
+                        n, v.size());
   };
   expect_size(x, "x");
   if (!x.allFinite()) throw std::invalid_argument("KinsolSolver::solve: the initial guess is not finite");
   if (!residual || !jacobian) throw std::invalid_argument("KinsolSolver::solve: empty residual or Jacobian");
-  if (!(options.fnormtol > 0.0) || !(options.scsteptol > 0.0))
-    throw std::invalid_argument("KinsolSolver::solve: fnormtol and scsteptol must be > 0, got " +
-                                std::to_string(options.fnormtol) + ", " + std::to_string(options.scsteptol));
-  if (options.max_iterations < 1 || options.max_setup_calls < 1)
-    throw std::invalid_argument("KinsolSolver::solve: max_iterations and max_setup_calls must be >= 1, got " +
-                                std::to_string(options.max_iterations) + ", " +
-                                std::to_string(options.max_setup_calls));
-  if (options.print_level < 0 || options.print_level > 3)
-    throw std::invalid_argument("KinsolSolver::solve: print_level must be 0..3, got " +
-                                std::to_string(options.print_level));
+  RODLAB_THROW_UNLESS(options.fnormtol > 0.0 && options.scsteptol > 0.0,
+                      "KinsolSolver::solve: fnormtol and scsteptol must be > 0, got {:g}, {:g}",
+                      options.fnormtol, options.scsteptol);
+  RODLAB_THROW_UNLESS(
+      options.max_iterations >= 1 && options.max_setup_calls >= 1,
+      "KinsolSolver::solve: max_iterations and max_setup_calls must be >= 1, got {}, {}",
+      options.max_iterations, options.max_setup_calls);
+  RODLAB_THROW_UNLESS(options.print_level >= 0 && options.print_level <= 3,
+                      "KinsolSolver::solve: print_level must be 0..3, got {}", options.print_level);
   if (!(options.max_newton_step >= 0.0))
     throw std::invalid_argument("KinsolSolver::solve: max_newton_step must be >= 0");
   auto set_scale = [&](const Vector& scale, N_Vector target, const char* what) {
@@ -178,8 +179,8 @@ KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacob
       return;
     }
     expect_size(scale, what);
-    if (!scale.allFinite() || !(scale.minCoeff() > 0.0))
-      throw std::invalid_argument(std::string("KinsolSolver::solve: ") + what + " must be finite and > 0");
+    RODLAB_THROW_UNLESS(scale.allFinite() && scale.minCoeff() > 0.0,
+                        "KinsolSolver::solve: {} must be finite and > 0", what);
     out = scale;
   };
   set_scale(options.u_scale, d.u_scale.get(), "u_scale");
@@ -230,8 +231,8 @@ KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacob
     case KIN_VECTOROP_ERR:
     case KIN_CONTEXT_ERR:
       // Set-up errors, not convergence failures.
-      throw std::runtime_error("KINSOL: KINSol failed with " + stats.flag_name +
-                               (call.message.empty() ? "" : " (" + call.message + ")"));
+      throw std::runtime_error(rodlab::format("KINSOL: KINSol failed with {}{}", stats.flag_name,
+                                              call.message.empty() ? "" : " (" + call.message + ")"));
     default: break;
   }
   stats.converged = flag == KIN_SUCCESS || flag == KIN_INITIAL_GUESS_OK;

@@ -5,6 +5,8 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::solvers {
 namespace {
 
@@ -106,8 +108,8 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
     out.F = F_new;
   }
   if (out.F.lpNorm<Eigen::Infinity>() <= options.tol) return finish(true, "");
-  return finish(false, "no convergence within " + std::to_string(options.max_iterations) +
-                           " Newton iterations");
+  return finish(false,
+                rodlab::format("no convergence within {} Newton iterations", options.max_iterations));
 }
 
 }  // namespace rodlab::solvers

@@ -22,6 +22,8 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::solvers::sundials {
 
 // --- RAII owners ----------------------------------------------------------------------------
@@ -55,15 +57,14 @@ using MemoryPtr = std::unique_ptr<void, MemoryDeleter<Free>>;
 template <class T>
 T check_created(T object, std::string_view module, const char* call) {
   if (object == nullptr)
-    throw std::runtime_error(std::string(module) + ": " + call + " returned NULL");
+    throw std::runtime_error(rodlab::format("{}: {} returned NULL", module, call));
   return object;
 }
 
 inline ContextPtr make_context(std::string_view module) {
   SUNContext ctx = nullptr;
   if (const int flag = SUNContext_Create(nullptr, &ctx); flag != 0 || ctx == nullptr)
-    throw std::runtime_error(std::string(module) + ": SUNContext_Create failed with flag " +
-                             std::to_string(flag));
+    throw std::runtime_error(rodlab::format("{}: SUNContext_Create failed with flag {}", module, flag));
   return ContextPtr(ctx);
 }
 
@@ -114,13 +115,12 @@ class JacobianPattern {
   /// `owner` names the adapter in messages (e.g. "KinsolSolver"). Throws std::invalid_argument
   /// for a non-square, empty or structurally empty pattern.
   JacobianPattern(const SparseMatrix& pattern, std::string_view owner) : owner_(owner) {
-    if (pattern.rows() != pattern.cols() || pattern.rows() == 0)
-      throw std::invalid_argument(owner_ + ": expected a square non-empty Jacobian pattern, got " +
-                                  std::to_string(pattern.rows()) + " x " +
-                                  std::to_string(pattern.cols()));
+    RODLAB_THROW_UNLESS(pattern.rows() == pattern.cols() && pattern.rows() != 0,
+                        "{}: expected a square non-empty Jacobian pattern, got {} x {}", owner_,
+                        pattern.rows(), pattern.cols());
     J_ = pattern;
     J_.makeCompressed();
-    if (J_.nonZeros() == 0) throw std::invalid_argument(owner_ + ": the Jacobian pattern is empty");
+    RODLAB_THROW_UNLESS(J_.nonZeros() != 0, "{}: the Jacobian pattern is empty", owner_);
     std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
     pristine_ = J_;
     column_pointers_.assign(J_.outerIndexPtr(), J_.outerIndexPtr() + size() + 1);
@@ -146,9 +146,9 @@ class JacobianPattern {
     fill_values(J_);
     if (!same_pattern()) {
       J_ = pristine_;
-      throw std::logic_error(owner_ +
-                             ": the Jacobian callback changed the sparsity pattern (only values "
-                             "may be set)");
+      throw std::logic_error(rodlab::format(
+          "{}: the Jacobian callback changed the sparsity pattern (only values may be set)",
+          owner_));
     }
     const double* values = J_.valuePtr();
     if (!std::all_of(values, values + J_.nonZeros(), [](double v) { return std::isfinite(v); }))

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <variant>
 
+#include "rodlab/check.hpp"
 #include "rodlab/loads/point_wrench.hpp"
 #include "rodlab/solvers/common/tendon_law.hpp"
 
@@ -84,9 +85,9 @@ DynamicProblem DynamicProblem::from_scene(const scene::Scene& scene) {
   }
   p.drag_ = loads.drag;
   p.distributed_ = loads.distributed;
-  if (scene.actuators.size() > static_cast<std::size_t>(kMaxActuators))
-    throw std::invalid_argument("dynamics: at most " + std::to_string(kMaxActuators) +
-                                " actuators (got " + std::to_string(scene.actuators.size()) + ")");
+  RODLAB_THROW_UNLESS(scene.actuators.size() <= static_cast<std::size_t>(kMaxActuators),
+                      "dynamics: at most {} actuators (got {})", kMaxActuators,
+                      scene.actuators.size());
   for (const auto& a : scene.actuators) {
     p.actuators_.push_back(tendon_actuator(a, p.length()));
     const TendonActuator& t = p.actuators_.back();

@@ -1,13 +1,13 @@
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 
 #include <chrono>
-#include <cstdio>
 #include <cmath>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
 
+#include "rodlab/check.hpp"
 #include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/registry.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
@@ -20,12 +20,6 @@ constexpr int kStaticRefinement = 4;
 /// A run is unstable once kinetic + strain energy exceed this multiple of the energy the scene
 /// can account for (see energy_budget).
 constexpr double kUnstableFactor = 1e3;
-
-std::string scientific(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
 
 /// How far (scaled, DynamicProblem::clamp_mismatch) a clamp may sit from the rest shape's tip
 /// for `initial: straight`: rounding of base exp(L xi*) against the scene's numbers.
@@ -41,11 +35,12 @@ RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem
   if (options.initial == scene::Initial::straight) {
     if (problem.tip_clamped()) {
       const double miss = problem.clamp_mismatch(problem.reference_tip()).lpNorm<Eigen::Infinity>();
-      if (!(miss <= kClampRestTolerance))
-        throw std::invalid_argument(
-            "tip.clamped: the clamp's pose is not the rest shape's tip pose (scaled mismatch " +
-            scientific(miss) + "), so dynamics.initial: straight is not a state of the rod; "
-            "use dynamics.initial: static (the clamped equilibrium under the t = 0 loads)");
+      RODLAB_THROW_UNLESS(
+          miss <= kClampRestTolerance,
+          "tip.clamped: the clamp's pose is not the rest shape's tip pose (scaled mismatch {:.3g}), "
+          "so dynamics.initial: straight is not a state of the rod; use dynamics.initial: static "
+          "(the clamped equilibrium under the t = 0 loads)",
+          miss);
     }
     for (int j = 0; j < n; ++j)
       state.g[j] = rod::reference_pose(problem.model(), problem.base(), j * ds);
@@ -134,10 +129,10 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
     out.max_det_deviation.push_back(stepper->max_det_deviation());
     const double active = e.kinetic + e.strain;
     if (!std::isfinite(e.total()) || !out.tip_position.back().allFinite())
-      failure = "unstable: the state became non-finite by t = " + std::to_string(t) + " s";
+      failure = rodlab::format("unstable: the state became non-finite by t = {:g} s", t);
     else if (active > kUnstableFactor * energy_budget(problem, e0, e))
-      failure = "unstable: kinetic + strain energy grew to " + std::to_string(active) +
-                " J by t = " + std::to_string(t) + " s";
+      failure = rodlab::format("unstable: kinetic + strain energy grew to {:g} J by t = {:g} s",
+                               active, t);
   };
   record(0.0);
   long done = 0;

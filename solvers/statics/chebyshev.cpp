@@ -13,6 +13,7 @@
 
 #include <Eigen/QR>
 
+#include "rodlab/check.hpp"
 #include "rodlab/solvers/common/chebyshev_operators.hpp"
 #include "rodlab/solvers/statics/chebyshev_newton_matrix.hpp"
 #include "rodlab/solvers/statics/continuation.hpp"
@@ -444,7 +445,7 @@ class Collocation {
       have_next = true;
       if (ratio > kReuseRatio) have_lu = false;  // slow: a new Newton matrix at the new x
     }
-    out.reason = "no convergence within " + std::to_string(max_iterations) + " Newton iterations";
+    out.reason = rodlab::format("no convergence within {} Newton iterations", max_iterations);
     return out;
   }
 
@@ -856,7 +857,7 @@ class ChebyshevSolver {
         if (!split) break;
       } else {
         if (!reasons.empty()) reasons += "; ";
-        reasons += std::to_string(C.elements()) + (C.elements() == 1 ? " element: " : " elements: ");
+        reasons += rodlab::format("{} {}: ", C.elements(), C.elements() == 1 ? "element" : "elements");
         reasons += a.reason;
         if (!best) {
           best.emplace(std::move(C));
@@ -877,9 +878,10 @@ class ChebyshevSolver {
       const double size = std::max(1.0, best_attempt.x.lpNorm<Eigen::Infinity>());
       if (!(defect <= kResolvedDefect * size)) {
         best_attempt.converged = false;
-        reasons = "not resolved: the collocation residual between the nodes is " +
-                  std::to_string(defect / size) +
-                  " times the solution's size (a spurious root of the discrete equations); increase nodes";
+        reasons = rodlab::format(
+            "not resolved: the collocation residual between the nodes is {:g} times the "
+            "solution's size (a spurious root of the discrete equations); increase nodes",
+            defect / size);
       }
     }
     std::vector<double> s;
@@ -955,8 +957,8 @@ class ChebyshevSolver {
     walk.correct = [&](double lf, const VectorXd& guess) {
       CorrectorResult r;
       if (budget <= 0) {
-        r.reason = "the budget of " + std::to_string(kBudgetFactor * options_.max_iterations) +
-                   " Newton iterations is spent";
+        r.reason = rodlab::format("the budget of {} Newton iterations is spent",
+                                  kBudgetFactor * options_.max_iterations);
         return r;
       }
       r.state = guess;
@@ -975,7 +977,7 @@ class ChebyshevSolver {
     if (may_split)
       walk.stop = [&](double lf, const VectorXd& state, std::string& why) {
         if (C.max_chart_rotation(state) <= kSplitRotation) return false;
-        why = "a chart turns by more than 2 pi / 3 at load factor " + std::to_string(lf);
+        why = rodlab::format("a chart turns by more than 2 pi / 3 at load factor {:g}", lf);
         return true;
       };
     C.problem().set_load_factor(0.0);
@@ -1010,12 +1012,13 @@ void check_options(const StaticProblem& problem, const ChebyshevOptions& options
   const int elements = element_count(problem, std::max(1, options.elements));
   if (elements > std::max(1, options.nodes - 1)) {
     const auto breakpoints = problem.breakpoints().size();
-    throw std::invalid_argument(
-        "chebyshev: " + std::to_string(elements) + " elements" +
-        (breakpoints > 0 ? " (one or more per stretch between the " + std::to_string(breakpoints) +
-                               " actuator breakpoints)"
-                         : std::string()) +
-        " need at least " + std::to_string(elements + 1) + " nodes, got " + std::to_string(options.nodes));
+    throw std::invalid_argument(rodlab::format(
+        "chebyshev: {} elements{} need at least {} nodes, got {}", elements,
+        breakpoints > 0
+            ? rodlab::format(" (one or more per stretch between the {} actuator breakpoints)",
+                             breakpoints)
+            : std::string(),
+        elements + 1, options.nodes));
   }
 }
 

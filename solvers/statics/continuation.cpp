@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::solvers::statics {
 
 ContinuationResult continue_load(const Continuation& walk, Eigen::VectorXd start) {
@@ -37,7 +39,7 @@ ContinuationResult continue_load(const Continuation& walk, Eigen::VectorXd start
     } else {
       step *= 0.5;
       if (step < steps.min)
-        return finish(false, "stalled at load factor " + std::to_string(lf) + " (" + last.reason + ")");
+        return finish(false, rodlab::format("stalled at load factor {:g} ({})", lf, last.reason));
     }
   }
   if (lf < 1.0) return finish(false, last.reason);

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "rodlab/check.hpp"
 #include "rodlab/solvers/common/kinsol_solver.hpp"
 #include "rodlab/solvers/statics/continuation.hpp"
 #include "rodlab/solvers/statics/result_builder.hpp"
@@ -335,10 +336,9 @@ class Collocation {
     cuts.push_back(L_);
     const int stretches = static_cast<int>(cuts.size()) - 1;
     const int intervals = N_ - 1;
-    if (intervals < stretches)
-      throw std::invalid_argument("kinsol: " + std::to_string(N_) + " nodes cannot hold the " +
-                                  std::to_string(stretches - 1) + " actuator breakpoints (need at least " +
-                                  std::to_string(stretches + 1) + ")");
+    RODLAB_THROW_UNLESS(intervals >= stretches,
+                        "kinsol: {} nodes cannot hold the {} actuator breakpoints (need at least {})",
+                        N_, stretches - 1, stretches + 1);
     std::vector<double> ideal(stretches);
     std::vector<int> count(stretches);
     int total = 0;
@@ -577,8 +577,7 @@ class Driver {
 
 KinsolCollocationReport solve_kinsol_collocation_report(const StaticProblem& problem,
                                                         const KinsolCollocationOptions& options) {
-  if (options.nodes < 2)
-    throw std::invalid_argument("kinsol: nodes must be >= 2, got " + std::to_string(options.nodes));
+  RODLAB_THROW_UNLESS(options.nodes >= 2, "kinsol: nodes must be >= 2, got {}", options.nodes);
   if (!(options.tol > 0.0) || !(options.step_tol > 0.0) || options.max_iterations < 1)
     throw std::invalid_argument("kinsol: tol and step_tol must be > 0 and max_iterations >= 1");
   if (!options.direct && !options.continuation)

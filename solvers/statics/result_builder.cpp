@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::solvers::statics {
 
 void fill_static_result(const StaticProblem& problem, std::span<const double> s,
@@ -41,8 +43,9 @@ void check_cables_taut(const StaticProblem& problem, result::StaticResult& out) 
     const double T = problem.axial_force(static_cast<int>(k));
     if (T < 0.0 && out.converged) {
       out.converged = false;
-      out.reason = "cable " + std::to_string(k) + " would need a compressive force (" + std::to_string(T) +
-                   " N) to reach its displacement: it goes slack";
+      out.reason = rodlab::format(
+          "cable {} would need a compressive force ({:g} N) to reach its displacement: it goes slack",
+          k, T);
     }
   }
 }

@@ -8,6 +8,7 @@
 
 #include <Eigen/LU>
 
+#include "rodlab/check.hpp"
 #include "rodlab/solvers/common/tendon_law.hpp"
 
 namespace rodlab::solvers::statics {
@@ -122,8 +123,8 @@ Vector6 StaticProblem::tip_residual(const SE3& g_tip, const Vector6& Lambda_tip)
 namespace rodlab::solvers::statics {
 
 void StaticProblem::add_actuator(ActuatorTerm term) {
-  if (static_cast<int>(actuators_.size()) >= kMaxActuators)
-    throw std::invalid_argument("at most " + std::to_string(kMaxActuators) + " actuators");
+  RODLAB_THROW_UNLESS(static_cast<int>(actuators_.size()) < kMaxActuators, "at most {} actuators",
+                      kMaxActuators);
   if (term.path.s0() < 0.0 || term.path.s1() > length())
     throw std::invalid_argument("actuator span outside [0, L]");
   // Rest length: composite Simpson of |u(xi*)| over the span (u is piecewise smooth between

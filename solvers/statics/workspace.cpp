@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <variant>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::solvers::statics {
 namespace {
 
@@ -23,9 +25,9 @@ WorkspaceInput input_of(scene::Actuator& actuator, std::size_t index) {
     }
   };
   WorkspaceInput in = std::visit(Visit{}, actuator);
-  if (std::isnan(in.limits.first))
-    throw std::invalid_argument("actuators." + std::to_string(index) +
-                                ": the workspace needs `limits: [min, max]` on every actuator");
+  RODLAB_THROW_UNLESS(!std::isnan(in.limits.first),
+                      "actuators.{}: the workspace needs `limits: [min, max]` on every actuator",
+                      index);
   return in;
 }
 

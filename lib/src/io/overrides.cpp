@@ -6,6 +6,8 @@
 #include <limits>
 #include <optional>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::io {
 namespace {
 
@@ -56,8 +58,8 @@ std::optional<std::string> step(YAML::Node& current, const std::string& path, st
     if (!current.IsSequence())
       return parent + " is not a list, so it has no element " + segment + got();
     if (index >= current.size())
-      return "no such element: " + parent + " has " + std::to_string(current.size()) +
-             " entries (got index " + segment + ")";
+      return rodlab::format("no such element: {} has {} entries (got index {})", parent,
+                            current.size(), segment);
     if (value)
       current[index] = *value;
     else
@@ -86,7 +88,8 @@ Override parse_override(std::string_view key_equals_value) {
   const std::string text(key_equals_value);
   const std::size_t eq = key_equals_value.find('=');
   const auto fail = [&](const std::string& message) {
-    throw SceneError({SceneDiagnostic{"--set", 0, 0, "", message + " (got " + text + ")"}});
+    throw SceneError(
+        {SceneDiagnostic{"--set", 0, 0, "", rodlab::format("{} (got {})", message, text)}});
   };
   if (eq == std::string_view::npos) fail("expected KEY=VALUE, e.g. rod.material.E=2e6");
   const std::string_view key = trim(key_equals_value.substr(0, eq));

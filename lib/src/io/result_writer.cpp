@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rodlab/check.hpp"
 #include "rodlab/io/atomic_file.hpp"
 
 namespace rodlab::io {
@@ -66,10 +67,9 @@ void append_row(std::string& out, const std::vector<double>& row) {
 
 const std::vector<double>& checked_series(const std::vector<double>& series, const char* name,
                                           std::size_t expected) {
-  if (series.size() != expected)
-    throw std::invalid_argument(std::string("dynamic result: ") + name + " has " +
-                                std::to_string(series.size()) + " values for " +
-                                std::to_string(expected) + " output times");
+  RODLAB_THROW_UNLESS(series.size() == expected,
+                      "dynamic result: {} has {} values for {} output times", name, series.size(),
+                      expected);
   return series;
 }
 
@@ -86,8 +86,9 @@ ResultFormat result_format(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
   if (ext == ".json") return ResultFormat::json;
   if (ext == ".csv") return ResultFormat::csv;
-  throw std::invalid_argument("result file " + path.string() +
-                              ": extension must be .json or .csv (got '" + ext + "')");
+  throw std::invalid_argument(
+      rodlab::format("result file {}: extension must be .json or .csv (got '{}')", path.string(),
+                     ext));
 }
 
 std::string to_json(const result::StaticResult& r) {
@@ -159,10 +160,9 @@ std::string to_csv(const result::StaticResult& r) {
 
 std::string to_csv(const result::DynamicResult& r) {
   const std::size_t n = r.t.size();
-  if (r.tip_position.size() != n)
-    throw std::invalid_argument("dynamic result: tip_position has " +
-                                std::to_string(r.tip_position.size()) + " values for " +
-                                std::to_string(n) + " output times");
+  RODLAB_THROW_UNLESS(r.tip_position.size() == n,
+                      "dynamic result: tip_position has {} values for {} output times",
+                      r.tip_position.size(), n);
   const auto& e = r.energy;
   const std::vector<const std::vector<double>*> columns{
       &checked_series(e.kinetic, "energy.kinetic", n),

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "rodlab/check.hpp"
+
 #include "overrides.hpp"
 #include "scene_readers.hpp"
 
@@ -93,15 +95,8 @@ scene::Scene read_scene(detail::Checker& c, const detail::Field& root,
 
 std::string SceneDiagnostic::to_string() const {
   std::string out = source;
-  // appended piecewise: GCC 12 gives a false -Wrestrict for ":" + std::to_string(...) here
-  if (line > 0) {
-    out += ':';
-    out += std::to_string(line);
-    if (column > 0) {
-      out += ':';
-      out += std::to_string(column);
-    }
-  }
+  if (line > 0)
+    out += column > 0 ? rodlab::format(":{}:{}", line, column) : rodlab::format(":{}", line);
   out += ": ";
   if (!field.empty()) out += field + ": ";
   out += message;
@@ -126,8 +121,8 @@ scene::Scene load_scene_from_string(const std::string& yaml_text, const std::str
   if (documents.size() > 1) {
     const YAML::Mark m = documents[1].Mark();
     fail(source_name, m.line + 1, m.column + 1,
-         "a scene is a single YAML document (got " + std::to_string(documents.size()) +
-             " documents separated by ---)");
+         rodlab::format("a scene is a single YAML document (got {} documents separated by ---)",
+                        documents.size()));
   }
   YAML::Node root = documents.front();
   if (!root.IsMap()) {

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::io::detail {
 namespace {
 
@@ -213,8 +215,8 @@ KeyCheck Checker::keys(const Field& map, std::initializer_list<std::string_view>
       // Lines inside an override's VALUE would be misleading: say where only for the file.
       const bool in_file = !first->second.is_null() && !origin_of(path);
       error(key.Mark(), path,
-            in_file ? "duplicate key (first given at line " +
-                          std::to_string(first->second.line + 1) + ")"
+            in_file ? rodlab::format("duplicate key (first given at line {})",
+                                     first->second.line + 1)
                     : std::string("duplicate key"));
       continue;
     }
@@ -280,8 +282,7 @@ std::optional<std::vector<Field>> Checker::list(const Field& f, std::size_t min_
   const std::size_t n = f.node.IsNull() ? 0 : f.node.size();
   if (n < min_size) {
     error(f, min_size == 1 ? std::string("must not be empty")
-                           : "must have at least " + std::to_string(min_size) + " entries (got " +
-                                 std::to_string(n) + ")");
+                           : rodlab::format("must have at least {} entries (got {})", min_size, n));
     return std::nullopt;
   }
   std::vector<Field> items;
@@ -331,11 +332,11 @@ std::optional<int> Checker::integer(const Field& f, int min) {
     return std::nullopt;
   }
   if (*v < min) {
-    error(f, "must be >= " + std::to_string(min) + got);
+    error(f, rodlab::format("must be >= {}{}", min, got));
     return std::nullopt;
   }
   if (*v > std::numeric_limits<int>::max()) {
-    error(f, "must be <= " + std::to_string(std::numeric_limits<int>::max()) + got);
+    error(f, rodlab::format("must be <= {}{}", std::numeric_limits<int>::max(), got));
     return std::nullopt;
   }
   return static_cast<int>(*v);
@@ -374,8 +375,7 @@ std::optional<Eigen::VectorXd> Checker::numbers(const Field& f, Eigen::Index siz
                                                 const Range& range) {
   if (!f.exists) return std::nullopt;
   if (!f.node.IsSequence() || static_cast<Eigen::Index>(f.node.size()) != size) {
-    error(f,
-          "must be a list of " + std::to_string(size) + " numbers (got " + describe(f.node) + ")");
+    error(f, rodlab::format("must be a list of {} numbers (got {})", size, describe(f.node)));
     return std::nullopt;
   }
   Eigen::VectorXd v(size);

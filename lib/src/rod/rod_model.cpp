@@ -4,14 +4,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::rod {
-namespace {
-
-void require(bool ok, const std::string& what, double got) {
-  if (!ok) throw std::invalid_argument(what + " (got " + std::to_string(got) + ")");
-}
-
-}  // namespace
 
 RodModel::RodModel(double length, const Section& section, const Material& material, ModelKind kind,
                    const Vector6& reference_twist)
@@ -21,14 +16,19 @@ RodModel::RodModel(double length, const Section& section, const Material& materi
       kind_(kind),
       props_(rod::properties(section)),
       xi_star_(reference_twist) {
-  require(length > 0.0 && std::isfinite(length), "rod length must be > 0", length);
-  require(material.E > 0.0 && std::isfinite(material.E), "E must be > 0", material.E);
-  require(material.G > 0.0 && std::isfinite(material.G), "G must be > 0", material.G);
-  require(material.rho > 0.0 && std::isfinite(material.rho), "rho must be > 0", material.rho);
-  require(material.viscosity >= 0.0 && std::isfinite(material.viscosity), "viscosity must be >= 0",
-          material.viscosity);
-  require(reference_twist.allFinite() && reference_twist.tail<3>().norm() > 0.0,
-          "reference twist needs a non-zero linear part nu*", reference_twist.tail<3>().norm());
+  RODLAB_THROW_UNLESS(length > 0.0 && std::isfinite(length), "rod length must be > 0 (got {:g})",
+                      length);
+  RODLAB_THROW_UNLESS(material.E > 0.0 && std::isfinite(material.E), "E must be > 0 (got {:g})",
+                      material.E);
+  RODLAB_THROW_UNLESS(material.G > 0.0 && std::isfinite(material.G), "G must be > 0 (got {:g})",
+                      material.G);
+  RODLAB_THROW_UNLESS(material.rho > 0.0 && std::isfinite(material.rho),
+                      "rho must be > 0 (got {:g})", material.rho);
+  RODLAB_THROW_UNLESS(material.viscosity >= 0.0 && std::isfinite(material.viscosity),
+                      "viscosity must be >= 0 (got {:g})", material.viscosity);
+  RODLAB_THROW_UNLESS(reference_twist.allFinite() && reference_twist.tail<3>().norm() > 0.0,
+                      "reference twist needs a non-zero linear part nu* (got {:g})",
+                      reference_twist.tail<3>().norm());
 
   const auto& p = props_;
   const double E = material.E, G = material.G, rho = material.rho, alpha = material.viscosity;

@@ -5,14 +5,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::rod {
 namespace {
 
 using std::numbers::pi;
 
 void require_positive(double value, const char* what) {
-  if (!(value > 0.0) || !std::isfinite(value))
-    throw std::invalid_argument(std::string(what) + " must be > 0 (got " + std::to_string(value) + ")");
+  RODLAB_THROW_UNLESS(value > 0.0 && std::isfinite(value), "{} must be > 0 (got {:g})", what,
+                      value);
 }
 
 SectionProperties of(const Circle& c) {
@@ -24,9 +26,9 @@ SectionProperties of(const Circle& c) {
 
 SectionProperties of(const Tube& t) {
   require_positive(t.outer_diameter, "tube outer_diameter");
-  if (!(t.inner_diameter >= 0.0) || !(t.inner_diameter < t.outer_diameter))
-    throw std::invalid_argument("tube inner_diameter must be >= 0 and below outer_diameter (got " +
-                                std::to_string(t.inner_diameter) + ")");
+  RODLAB_THROW_UNLESS(t.inner_diameter >= 0.0 && t.inner_diameter < t.outer_diameter,
+                      "tube inner_diameter must be >= 0 and below outer_diameter (got {:g})",
+                      t.inner_diameter);
   const double ro2 = 0.25 * t.outer_diameter * t.outer_diameter;
   const double ri2 = 0.25 * t.inner_diameter * t.inner_diameter;
   const double I = 0.25 * pi * (ro2 * ro2 - ri2 * ri2);  // pi (Do^4 - Di^4) / 64

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "rodlab/check.hpp"
 #include "rodlab/solvers/common/ida_solver.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
 
@@ -19,9 +20,8 @@ class IdaReference final : public Stepper {
  public:
   IdaReference(const DynamicProblem& problem, const IdaOptions& options, std::span<const SE3> g0)
       : rod_(problem, options.nodes, "ida", true) {
-    if (static_cast<int>(g0.size()) != rod_.nodes())
-      throw std::invalid_argument("ida: expected " + std::to_string(rod_.nodes()) +
-                                  " initial poses, got " + std::to_string(g0.size()));
+    RODLAB_THROW_UNLESS(static_cast<int>(g0.size()) == rod_.nodes(),
+                        "ida: expected {} initial poses, got {}", rod_.nodes(), g0.size());
     if (!(options.rtol > 0.0) || !(options.atol > 0.0))
       throw std::invalid_argument("ida: rtol and atol must be > 0");
     if (options.max_steps < 1) throw std::invalid_argument("ida: max_steps must be >= 1");
@@ -78,9 +78,9 @@ class IdaReference final : public Stepper {
     const IdaStats s = ida_->advance(tout);
     rod_.set_state(ida_->y().head(rod_.node_size()));
     if (!s.ok) {
-      StepStatus failed = StepStatus::failed("ida: IDASolve failed with " + s.flag_name +
-                                             " at t = " + std::to_string(s.t) + " s" +
-                                             (s.message.empty() ? "" : " (" + s.message + ")"));
+      StepStatus failed = StepStatus::failed(
+          rodlab::format("ida: IDASolve failed with {} at t = {:g} s{}", s.flag_name, s.t,
+                         s.message.empty() ? "" : " (" + s.message + ")"));
       failed.iterations = static_cast<int>(s.nonlinear_iterations);
       return failed;
     }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rodlab/check.hpp"
 #include "rodlab/solvers/common/kinsol_solver.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
@@ -37,12 +38,11 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
                 /*keep_factorisation=*/true) {
     if (!(options.tol > 0.0))
       throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");
-    if (options.max_iterations < 1 || options.max_setup_calls < 1 || options.jacobian_max_age < 0)
-      throw std::invalid_argument(
-          "implicit-midpoint-collocation: max_iterations and max_setup_calls must be >= 1 and "
-          "jacobian_max_age >= 0, got " + std::to_string(options.max_iterations) + ", " +
-          std::to_string(options.max_setup_calls) + ", " +
-          std::to_string(options.jacobian_max_age));
+    RODLAB_THROW_UNLESS(options.max_iterations >= 1 && options.max_setup_calls >= 1 &&
+                            options.jacobian_max_age >= 0,
+                        "implicit-midpoint-collocation: max_iterations and max_setup_calls must "
+                        "be >= 1 and jacobian_max_age >= 0, got {}, {}, {}",
+                        options.max_iterations, options.max_setup_calls, options.jacobian_max_age);
     n_ = rod_.node_size();
     nc_ = rod_.constraint_size();
     m_ = rod_.unknown_size();
@@ -208,11 +208,10 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     }
     if (!s.converged) {
       rod_.set_state(y_);
-      StepStatus failed = StepStatus::failed(
-          "implicit-midpoint-collocation: KINSOL did not converge in the step from t = " +
-          std::to_string(t) + " s (dt = " + std::to_string(dt) + " s): " + s.flag_name +
-          ", scaled residual " + std::to_string(s.fnorm) +
-          (s.message.empty() ? "" : " (" + s.message + ")"));
+      StepStatus failed = StepStatus::failed(rodlab::format(
+          "implicit-midpoint-collocation: KINSOL did not converge in the step from t = {:g} s "
+          "(dt = {:g} s): {}, scaled residual {:g}{}",
+          t, dt, s.flag_name, s.fnorm, s.message.empty() ? "" : " (" + s.message + ")"));
       failed.iterations = static_cast<int>(iterations);
       history_ = 0;
       return failed;

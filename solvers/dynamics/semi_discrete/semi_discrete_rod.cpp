@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "rodlab/check.hpp"
 #include "rodlab/rod/characteristics.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 
@@ -21,18 +22,19 @@ constexpr int kColours = 3;
 SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const std::string& who,
                                  bool constrained)
     : P_(problem), n_(nodes) {
-  if (n_ < 3) throw std::invalid_argument(who + ": nodes must be >= 3");
-  if (problem.is_kirchhoff() && !constrained)
-    throw std::invalid_argument(who + ": rod.model kirchhoff is not supported yet");
-  if (problem.has_length_control() && !constrained)
-    throw std::invalid_argument(
-        who + ": cable displacement and fluidic volume control are not supported (a prescribed "
-              "path length makes the semi-discrete system an index-3 DAE); use "
-              "implicit-midpoint-collocation, variational, implicit-midpoint or bdf-alpha, or "
-              "give a tension / pressure");
-  if (problem.is_kirchhoff() && problem.tip_clamped())
-    throw std::invalid_argument(who + ": rod.model kirchhoff with tip.clamped is not supported yet; "
-                                      "use implicit-midpoint or bdf-alpha, or rod.model cosserat");
+  RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", who);
+  RODLAB_THROW_UNLESS(constrained || !problem.is_kirchhoff(),
+                      "{}: rod.model kirchhoff is not supported yet", who);
+  RODLAB_THROW_UNLESS(constrained || !problem.has_length_control(),
+                      "{}: cable displacement and fluidic volume control are not supported (a "
+                      "prescribed path length makes the semi-discrete system an index-3 DAE); use "
+                      "implicit-midpoint-collocation, variational, implicit-midpoint or "
+                      "bdf-alpha, or give a tension / pressure",
+                      who);
+  RODLAB_THROW_UNLESS(!(problem.is_kirchhoff() && problem.tip_clamped()),
+                      "{}: rod.model kirchhoff with tip.clamped is not supported yet; use "
+                      "implicit-midpoint or bdf-alpha, or rod.model cosserat",
+                      who);
   kirchhoff_ = problem.is_kirchhoff();
   // A clamped tip node is prescribed like the base: nodes 1..N-2 are the unknowns.
   clamped_ = problem.tip_clamped();
@@ -123,9 +125,8 @@ SemiDiscreteRod::Vector SemiDiscreteRod::tolerance_scale() const {
 }
 
 SemiDiscreteRod::Vector SemiDiscreteRod::rest_state(std::span<const SE3> g0) const {
-  if (static_cast<int>(g0.size()) != n_)
-    throw std::invalid_argument("expected " + std::to_string(n_) + " initial poses, got " +
-                                std::to_string(g0.size()));
+  RODLAB_THROW_UNLESS(static_cast<int>(g0.size()) == n_, "expected {} initial poses, got {}", n_,
+                      g0.size());
   std::vector<SE3> g(g0.begin(), g0.end());
   if (kirchhoff_) {
     // Start on the constraint (as variational): a chord of the sampled initial shape is shorter

@@ -22,7 +22,9 @@
 
 #include <Eigen/LU>
 
+#include "rodlab/check.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
+
 
 namespace rodlab::solvers::dynamics {
 namespace {
@@ -420,8 +422,9 @@ void SemiDiscreteRod::stabilised_consistent_state(double t, double t_piece, Vect
       const double norm = dense_newton(moved, nu, scales, 1e-13, 30);
       if (!(norm <= 1e-10))
         throw std::runtime_error(
-            "the initial poses could not be put on the constraints (Kirchhoff / prescribed "
-            "lengths): residual " + std::to_string(norm));
+            rodlab::format("the initial poses could not be put on the constraints (Kirchhoff / "
+                           "prescribed lengths): residual {:g}",
+                           norm));
       y.head(iD_) = ys.head(iD_);  // dense_newton's last evaluation was at its solution
     }
   }

@@ -14,7 +14,9 @@
 
 #include <Eigen/LU>
 
+#include "rodlab/check.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+
 
 namespace rodlab::solvers::dynamics {
 
@@ -68,7 +70,7 @@ class ShootingNewton {
     auto norm = [](const Vec& v) { return v.template lpNorm<Eigen::Infinity>(); };
     while (!(norm(r) <= tol)) {
       if (out.shots >= max_shots || !r.allFinite()) {
-        out.failure = "single shooting did not converge (tip residual " + std::to_string(norm(r)) + ")";
+        out.failure = rodlab::format("single shooting did not converge (tip residual {:g})", norm(r));
         return out;
       }
       const Eigen::PartialPivLU<Mat> lu(J_);
@@ -98,8 +100,10 @@ class ShootingNewton {
       }
       if (!(norm(r_new) < norm(r))) {
         shoot(x);  // leave the profiles of the best iterate
-        out.failure = "single shooting did not converge (no step along Newton's direction "
-                      "reduces the tip residual " + std::to_string(norm(r)) + ")";
+        out.failure = rodlab::format(
+            "single shooting did not converge (no step along Newton's direction reduces the tip "
+            "residual {:g})",
+            norm(r));
         return out;
       }
       // Broyden's rank-one update of the secant model.

@@ -15,6 +15,8 @@
 
 #include <Eigen/LU>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::solvers::dynamics {
 namespace {
 
@@ -31,21 +33,21 @@ class ShootingStepper final : public Stepper {
       : P_(problem), opt_(options), rule_(std::move(rule)), n_(options.nodes),
         ds_(problem.length() / (n_ - 1)) {
     const std::string name(rule_->name());
-    if (n_ < 3) throw std::invalid_argument(name + ": nodes must be >= 3");
-    if (static_cast<int>(initial.xi.size()) != n_ || static_cast<int>(initial.g.size()) != n_)
-      throw std::invalid_argument(name + ": expected " + std::to_string(n_) +
-                                  " initial nodes, got " + std::to_string(initial.xi.size()));
+    RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", name);
+    RODLAB_THROW_UNLESS(
+        static_cast<int>(initial.xi.size()) == n_ && static_cast<int>(initial.g.size()) == n_,
+        "{}: expected {} initial nodes, got {}", name, n_, initial.xi.size());
     xi_ = initial.xi;
     g_ = initial.g;
     if (problem.tip_clamped()) {
       // The state must meet the clamp on this grid (its poses are rebuilt from the strains).
       update_poses();
       const double miss = P_.clamp_mismatch(g_.back()).lpNorm<Eigen::Infinity>();
-      if (!(miss <= kClampStartTolerance))
-        throw std::invalid_argument(
-            name + ": the initial strains miss tip.clamped by " + std::to_string(miss) +
-            " (scaled) on this grid (explicit Euler RKMK); start from its own statics "
-            "(rkmk-euler-explicit at the same nodes)");
+      RODLAB_THROW_UNLESS(miss <= kClampStartTolerance,
+                          "{}: the initial strains miss tip.clamped by {:g} (scaled) on this grid "
+                          "(explicit Euler RKMK); start from its own statics "
+                          "(rkmk-euler-explicit at the same nodes)",
+                          name, miss);
     }
     eta_.assign(n_, Vector6::Zero());
     xi_u_.assign(n_, Vector6::Zero());
@@ -140,8 +142,8 @@ class ShootingStepper final : public Stepper {
 
  private:
   StepStatus failure(const std::string& what, double t) const {
-    return StepStatus::failed(std::string(rule_->name()) + ": " + what + " in the step from t = " +
-                              std::to_string(t) + " s (dt = " + std::to_string(dt_) + " s)");
+    return StepStatus::failed(rodlab::format("{}: {} in the step from t = {:g} s (dt = {:g} s)",
+                                             rule_->name(), what, t, dt_));
   }
 
   /// Newton on the shooting unknowns x (Lambda(0) scaled, then the actuator unknowns):

@@ -9,6 +9,7 @@
 
 #include <Eigen/LU>
 
+#include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
 #include "embedded_reference.hpp"
 #include "shooting_newton.hpp"
@@ -36,10 +37,10 @@ class StaggeredShootingStepper final : public Stepper {
                            const RestState& initial, std::unique_ptr<TimeRule> rule)
       : P_(problem), opt_(options), rule_(std::move(rule)), n_(options.nodes),
         ds_(problem.length() / (n_ - 1)), name_(std::string(rule_->name()) + " (grid staggered)") {
-    if (n_ < 3) throw std::invalid_argument(name_ + ": nodes must be >= 3");
-    if (static_cast<int>(initial.g.size()) != n_ || static_cast<int>(initial.xi.size()) != n_)
-      throw std::invalid_argument(name_ + ": expected " + std::to_string(n_) +
-                                  " initial nodes, got " + std::to_string(initial.g.size()));
+    RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", name_);
+    RODLAB_THROW_UNLESS(
+        static_cast<int>(initial.g.size()) == n_ && static_cast<int>(initial.xi.size()) == n_,
+        "{}: expected {} initial nodes, got {}", name_, n_, initial.g.size());
     const Vector6& xs = problem.model().xi_star();
     g_ = initial.g;
     xi_.assign(n_ - 1, Vector6::Zero());
@@ -100,11 +101,12 @@ class StaggeredShootingStepper final : public Stepper {
     prepare_references();
     const ShootingOutcome out = solve_shots(steps_ >= 2);
     if (!out.failure.empty())
-      return StepStatus::failed(name_ + ": " + out.failure + " in the step from t = " +
-                                std::to_string(t) + " s (dt = " + std::to_string(dt) + " s)");
+      return StepStatus::failed(rodlab::format(
+          "{}: {} in the step from t = {:g} s (dt = {:g} s)", name_, out.failure, t, dt));
     if (inner_failed_)
-      return StepStatus::failed(name_ + ": a segment's strain did not converge at the solution "
-                                        "in the step from t = " + std::to_string(t) + " s");
+      return StepStatus::failed(rodlab::format(
+          "{}: a segment's strain did not converge at the solution in the step from t = {:g} s",
+          name_, t));
     // the last shot was at the solution: its profiles and powers are current.
     const double w0 = rule_->ledger_start_weight(), w1 = 1.0 - w0;
     ledger_.dissipated += dt * (w0 * dissipated_start_ + w1 * dissipated_u_);

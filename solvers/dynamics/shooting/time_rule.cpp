@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "rodlab/check.hpp"
+
 namespace rodlab::solvers::dynamics {
 namespace {
 
@@ -110,9 +112,8 @@ class BdfAlphaRule final : public TimeRule {
 }  // namespace
 
 BdfAlphaCoefficients bdf_alpha_coefficients(double alpha, double dt) {
-  if (!(alpha >= -0.5 && alpha <= 0.0))
-    throw std::invalid_argument("bdf-alpha: alpha must lie in [-0.5, 0] (got " +
-                                std::to_string(alpha) + ")");
+  RODLAB_THROW_UNLESS(alpha >= -0.5 && alpha <= 0.0,
+                      "bdf-alpha: alpha must lie in [-0.5, 0] (got {:g})", alpha);
   if (!(dt > 0.0)) throw std::invalid_argument("bdf-alpha: dt must be > 0");
   BdfAlphaCoefficients b;
   b.c0 = (1.5 + alpha) / (dt * (1.0 + alpha));

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
+
 
 namespace rodlab::solvers::dynamics {
 
@@ -85,12 +87,12 @@ bool KirchhoffConstraint::enforce(double dt, std::span<const SE3> G, std::span<c
       mu[j] = mu_free_[j] + (dt / weight(j)) * impulse;
       // eta[j] solves (3.42) for the momentum it had: legendre_.momentum(dt, eta[j])
       if (!legendre_.solve(dt, mu[j], legendre_.momentum(dt, eta[j]), eta[j])) {
-        failure_ = "diverged in the velocity of node " + std::to_string(j);
+        failure_ = rodlab::format("diverged in the velocity of node {}", j);
         return false;
       }
     }
   }
-  failure_ = "did not converge (max |nu - nu*| = " + std::to_string(worst) + ")";
+  failure_ = rodlab::format("did not converge (max |nu - nu*| = {:g})", worst);
   return false;
 }
 

@@ -6,7 +6,9 @@
 
 #include <Eigen/LU>
 
+#include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
+
 
 namespace rodlab::solvers::dynamics {
 
@@ -200,8 +202,9 @@ bool VariationalActuators::enforce_lengths(double t1, double dt, std::span<const
     }
     trial_ -= J_.partialPivLu().solve(residual_);
   }
-  failure_ = "did not reach the prescribed path lengths (max |length - target| / L = " +
-             std::to_string(residual_.lpNorm<Eigen::Infinity>()) + ")";
+  failure_ = rodlab::format(
+      "did not reach the prescribed path lengths (max |length - target| / L = {:g})",
+      residual_.lpNorm<Eigen::Infinity>());
   return false;
 }
 

@@ -13,6 +13,7 @@
 
 #include "discrete_legendre.hpp"
 #include "kirchhoff_constraint.hpp"
+#include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
 #include "rodlab/solvers/dynamics/variational/variational.hpp"
 #include "variational_actuators.hpp"
@@ -32,9 +33,8 @@ class Variational final : public Stepper {
       : P_(problem), opt_(options), n_(options.nodes), ds_(problem.length() / (n_ - 1)) {
     if (n_ < 3) throw std::invalid_argument("variational: nodes must be >= 3");
     const auto& g0 = initial.g;
-    if (static_cast<int>(g0.size()) != n_)
-      throw std::invalid_argument("variational: expected " + std::to_string(n_) +
-                                  " initial poses, got " + std::to_string(g0.size()));
+    RODLAB_THROW_UNLESS(static_cast<int>(g0.size()) == n_,
+                        "variational: expected {} initial poses, got {}", n_, g0.size());
     kirchhoff_ = problem.is_kirchhoff();
     clamped_ = problem.tip_clamped();
     if (kirchhoff_ && clamped_)
@@ -155,9 +155,9 @@ class Variational final : public Stepper {
     if constexpr (kActuated) {
       double power = 0.0;
       if (!act_->enforce_lengths(t1, dt, G_, xi_, mu_, eta_, power))
-        return StepStatus::failed("variational: the length-control solve " + act_->failure() +
-                                  " (t = " + std::to_string(t1) + " s, dt = " +
-                                  std::to_string(dt) + " s)");
+        return StepStatus::failed(
+            rodlab::format("variational: the length-control solve {} (t = {:g} s, dt = {:g} s)",
+                           act_->failure(), t1, dt));
       work += power;
     }
     if (constraint_ && !constraint_->enforce(dt, G_, xi_, mu_, eta_))
@@ -261,17 +261,17 @@ class Variational final : public Stepper {
   }
 
   StepStatus constraint_failure(double t1, double dt) const {
-    return StepStatus::failed("variational: the Kirchhoff constraint solve " +
-                              constraint_->failure() + " (t = " + std::to_string(t1) +
-                              " s, dt = " + std::to_string(dt) + " s)");
+    return StepStatus::failed(
+        rodlab::format("variational: the Kirchhoff constraint solve {} (t = {:g} s, dt = {:g} s)",
+                       constraint_->failure(), t1, dt));
   }
 
   StepStatus diverged(int j, double t1, double dt) const {
     // (3.42) is a small perturbation of M eta = mu for any step below the stability limit;
     // divergence means the explicit scheme blew up.
-    return StepStatus::failed("unstable: variational: Newton on (3.42) diverged at node " +
-                              std::to_string(j) + " (t = " + std::to_string(t1) +
-                              " s, dt = " + std::to_string(dt) + " s)");
+    return StepStatus::failed(rodlab::format(
+        "unstable: variational: Newton on (3.42) diverged at node {} (t = {:g} s, dt = {:g} s)", j,
+        t1, dt));
   }
 
   const DynamicProblem& P_;
