@@ -10,13 +10,15 @@
 #include "rodlab/solvers/statics/shooting.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
+#include "reference/reference_rods.hpp"
+
 namespace {
 
 using namespace rodlab;
 using namespace rodlab::solvers::statics;
 
 StaticProblem gravity_cantilever(rod::ModelKind kind) {
-  rod::RodModel model(0.1, rod::Circle{0.01}, rod::Material{1e6, 0.33e6, 1000, 0}, kind);
+  const rod::RodModel model = validation::reference::table21_model(kind);
   StaticProblem problem(model, lie::SE3::identity());
   problem.set_gravity(loads::Gravity(model, lie::Vector3(-9.81, 0, 0)));
   return problem;

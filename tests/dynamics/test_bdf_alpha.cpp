@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "dynamics_support.hpp"
+#include "reference/reference_rods.hpp"
 #include "rodlab/solvers/dynamics/shooting/time_rule.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
@@ -25,8 +26,8 @@ using solvers::dynamics::bdf_alpha_coefficients;
 using solvers::dynamics::RuleField;
 using solvers::dynamics::solve_dynamic;
 
-constexpr double kEI = 1.0e6 * std::numbers::pi * 1e-8 / 64.0;
-constexpr double kL = 0.1;
+constexpr double kEI = rodlab::validation::reference::Table21::EI;  // the Table 2.1 rod
+constexpr double kL = rodlab::validation::reference::Table21::L;
 
 solvers::dynamics::DynamicSolveOptions bdf(double alpha, int nodes, double dt, double t_end,
                                            scene::Initial initial) {

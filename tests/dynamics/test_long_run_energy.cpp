@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dynamics_support.hpp"
+#include "reference/reference_rods.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 
 // The thesis claims the variational integrator has no numerical damping (3.3.1). Measured here
@@ -26,8 +27,8 @@ using namespace rodlab;
 using namespace rodlab::testing::dynamics;
 using solvers::dynamics::solve_dynamic;
 
-constexpr double kEI = 1.0e6 * std::numbers::pi * 1e-8 / 64.0;
-constexpr double kL = 0.1;
+constexpr double kEI = rodlab::validation::reference::Table21::EI;  // the Table 2.1 rod
+constexpr double kL = rodlab::validation::reference::Table21::L;
 
 }  // namespace
 

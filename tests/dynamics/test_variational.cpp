@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "dynamics_support.hpp"
+#include "reference/reference_rods.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
@@ -19,9 +20,9 @@ using namespace rodlab;
 using namespace rodlab::testing::dynamics;
 using solvers::dynamics::solve_dynamic;
 
-constexpr double kEI = 1.0e6 * std::numbers::pi * 1e-8 / 64.0;
-constexpr double kRhoA = 1000.0 * std::numbers::pi * 1e-4 / 4.0;
-constexpr double kL = 0.1;
+constexpr double kEI = rodlab::validation::reference::Table21::EI;  // the Table 2.1 rod
+constexpr double kRhoA = rodlab::validation::reference::Table21::rhoA;
+constexpr double kL = rodlab::validation::reference::Table21::L;
 
 double auto_dt(const scene::Scene& s, int nodes) {
   const auto p = solvers::dynamics::DynamicProblem::from_scene(s);
@@ -49,8 +50,7 @@ BOOST_AUTO_TEST_CASE(first_bending_frequency) {
   const auto r = solve_dynamic(s, options("variational", n, auto_dt(s, n), 1.2, scene::Initial::static_equilibrium));
   BOOST_REQUIRE(r.converged);
   const double f = 1.0 / mean_period(r.t, tip_x(r));
-  const double f_eb = std::pow(1.8751040687119611, 2) / (2 * std::numbers::pi) *
-                      std::sqrt(kEI / (kRhoA * std::pow(kL, 4)));
+  const double f_eb = rodlab::validation::reference::table21_first_bending_frequency_hz();
   BOOST_TEST_MESSAGE("f = " << f << " Hz, Euler-Bernoulli " << f_eb << " Hz, ratio " << f / f_eb);
   BOOST_TEST(f / f_eb < 1.0);
   BOOST_TEST(f / f_eb > 0.985);

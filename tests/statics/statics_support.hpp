@@ -23,6 +23,8 @@
 #include "rodlab/rod/rod_model.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 #include "rodlab/solvers/statics/static_problem.hpp"
+
+#include "reference/reference_rods.hpp"
 #include "schemes_under_test.hpp"
 
 namespace rodlab::testing::statics {
@@ -36,35 +38,15 @@ using result::StaticResult;
 using solvers::statics::StaticProblem;
 
 // ------------------------------------------------------------------------------------------
-// Table 2.1 (thesis section 2.7): E = 1 MPa, G = 0.33 MPa, rho = 1000 kg/m^3, D = 1 cm,
-// L = 10 cm, circular section, initially straight along +z.
-struct Table21 {
-  static constexpr double E = 1.0e6, G = 0.33e6, rho = 1000.0, D = 0.01, L = 0.1;
-  static constexpr double pi = std::numbers::pi;
-  static constexpr double A = pi * D * D / 4.0;             // 7.853981634e-5 m^2
-  static constexpr double I = pi * D * D * D * D / 64.0;    // 4.908738521e-10 m^4
-  static constexpr double J = 2.0 * I;                      // polar = torsion constant (circle)
-  static constexpr double EI = E * I;                       // 4.908738521e-4 N m^2
-  static constexpr double GJ = G * J;
-  static constexpr double GA = G * A;                       // 25.918 N
-  static constexpr double EA = E * A;                       // 78.540 N
-  static constexpr double weight = rho * A * 9.81;          // 0.77048 N/m
-};
-
-inline rod::RodModel table21_model(rod::ModelKind kind = rod::ModelKind::cosserat,
-                                   double length = Table21::L) {
-  rod::Material m;
-  m.E = Table21::E;
-  m.G = Table21::G;
-  m.rho = Table21::rho;
-  return rod::RodModel(length, rod::Circle{Table21::D}, m, kind);
-}
+// Table 2.1 (thesis section 2.7), defined once for validation, tests and benchmarks
+// (validation/reference/reference_rods.hpp).
+using validation::reference::Table21;
+using validation::reference::table21_model;
 
 inline const char* kind_name(rod::ModelKind kind) {
   return kind == rod::ModelKind::kirchhoff ? "kirchhoff" : "cosserat";
 }
 
-/// Base at the identity, free unloaded tip.
 inline StaticProblem table21_problem(rod::ModelKind kind = rod::ModelKind::cosserat) {
   StaticProblem p(table21_model(kind), SE3::identity());
   p.set_name(std::string("table2.1-") + kind_name(kind));  // shows in describe(result)

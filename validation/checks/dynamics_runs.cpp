@@ -104,58 +104,6 @@ double max_mechanical_rise(const DynamicResult& r, double after) {
   return rise;
 }
 
-/// The data sets the family fills while it runs.
-struct Data {
-  DataSet tip{.name = "dynamics_tip",
-              .description = "tip trajectories of the viscous cantilever (alpha = 300 Pa s, "
-                             "gravity, released straight, N = 20) per scheme",
-              .columns = {"scheme", "t", "x", "y", "z"}};
-  DataSet energy{.name = "dynamics_energy",
-                 .description = "energies against time per run: kinetic, strain, gravity, "
-                                "dissipated, work_in, total (ledger), mechanical = T + U + P, "
-                                "ledger_error = |total - total(0)| / scale",
-                 .columns = {"case", "t", "kinetic", "strain", "gravity", "dissipated", "work_in",
-                             "total", "mechanical", "ledger_error"}};
-  DataSet det{.name = "dynamics_det",
-              .description = "max |det R - 1| over the nodes against time per run",
-              .columns = {"case", "t", "det_deviation"}};
-  DataSet shapes{.name = "dynamics_shapes",
-                 .description = "rod shapes at the end of dynamics runs (s, x, y, z), with the "
-                                "statics equilibrium they settle on",
-                 .columns = {"case", "s", "x", "y", "z"}};
-  double worst_det = 0.0;
-  std::string worst_det_case;
-
-  void add_shape(const std::string& name, const std::vector<result::CenterlineSample>& c) {
-    for (const auto& x : c) {
-      const lie::Vector3 p = x.pose.translation();
-      shapes.add_row({name, x.s, p.x(), p.y(), p.z()});
-    }
-  }
-
-  /// Records a run's energies and det drift; `scale` normalises the ledger error.
-  void add(const std::string& name, const DynamicResult& r, double scale) {
-    const double t0 = r.energy.total.empty() ? 0.0 : r.energy.total.front();
-    for (std::size_t i = 0; i < r.t.size(); ++i) {
-      const auto& e = r.energy;
-      energy.add_row({name, r.t[i], e.kinetic[i], e.strain[i], e.gravity[i], e.dissipated[i],
-                      e.work_in[i], e.total[i], e.kinetic[i] + e.strain[i] + e.gravity[i],
-                      std::abs(e.total[i] - t0) / scale});
-      det.add_row({name, r.t[i], r.max_det_deviation[i]});
-    }
-    const double d = max_abs(r.max_det_deviation);
-    if (d >= worst_det) {
-      worst_det = d;
-      worst_det_case = name;
-    }
-  }
-  void add_tip(const DynamicResult& r) {
-    for (std::size_t i = 0; i < r.t.size(); ++i)
-      tip.add_row({r.scheme, r.t[i], r.tip_position[i].x(), r.tip_position[i].y(),
-                   r.tip_position[i].z()});
-  }
-};
-
 void DynamicsData::add_shape(const std::string& name, const std::vector<result::CenterlineSample>& c) {
   for (const auto& x : c) {
     const lie::Vector3 p = x.pose.translation();
