@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "rodlab/check.hpp"
+#include "rodlab/loads/fluidic_chamber.hpp"
 #include "rodlab/loads/point_wrench.hpp"
 #include "rodlab/solvers/common/tendon_law.hpp"
 
@@ -49,8 +50,8 @@ TendonActuator tendon_actuator(const scene::Actuator& actuator, double L) {
     }
     TendonActuator operator()(const scene::Fluidic& f) const {
       TendonActuator a{tendon_path(f.offset, f.span, L), f.pressure ? *f.pressure : *f.volume};
-      a.chamber_area = std::numbers::pi * f.chamber_radius * f.chamber_radius;
-      a.force_per_input = -a.chamber_area;
+      a.chamber_area = loads::chamber_area(f.chamber_radius);
+      a.force_per_input = loads::fluidic_chamber_force(1.0, a.chamber_area);  // F = -P A_c
       if (!f.pressure) a.drive = ActuatorDrive::length;  // volume control
       return a;
     }

@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 
 #include "rodlab/check.hpp"
+#include "rodlab/loads/fluidic_chamber.hpp"
 #include "rodlab/solvers/common/tendon_law.hpp"
 
 namespace rodlab::solvers::statics {
@@ -40,7 +41,7 @@ ActuatorTerm actuator_term(const scene::Actuator& actuator, double t, double L) 
     }
     ActuatorTerm operator()(const scene::Fluidic& f) const {
       ActuatorTerm a{ActuatorKind::fluidic, tendon_path(f.offset, f.span, L)};
-      a.chamber_area = std::numbers::pi * f.chamber_radius * f.chamber_radius;
+      a.chamber_area = loads::chamber_area(f.chamber_radius);
       if (f.pressure) a.input = f.pressure->at(t);
       if (f.volume) a.input = f.volume->at(t), a.target_length = 0.0;  // set below
       return a;
@@ -149,7 +150,7 @@ void StaticProblem::add_actuator(ActuatorTerm term) {
   // Length control: the input is a displacement (cable pulled in) or a volume (chamber).
   if (term.target_length) {
     term.target_length = term.kind == ActuatorKind::cable ? rest - term.input
-                                                          : term.input / term.chamber_area;
+                                                          : loads::chamber_length(term.input, term.chamber_area);
   }
   actuators_.push_back(std::move(term));
   const ActuatorTerm& a = actuators_.back();
@@ -175,7 +176,8 @@ double StaticProblem::axial_force(int k) const {
     case ActuatorKind::cable:
       return a.target_length ? unknown_value_[k] : load_factor_ * a.input;
     case ActuatorKind::fluidic:
-      return a.target_length ? unknown_value_[k] : -load_factor_ * a.input * a.chamber_area;
+      return a.target_length ? unknown_value_[k]
+                             : loads::fluidic_chamber_force(load_factor_ * a.input, a.chamber_area);
     case ActuatorKind::muscle:
       return a.law->force(load_factor_ * a.input, unknown_value_[k], a.rest_length);
   }

@@ -42,11 +42,7 @@ class IdaReference final : public Stepper {
     ida_ = std::make_unique<IdaSolver>(
         rod_.pattern(true),
         [this](double t, const ConstRef& y, const ConstRef& yp, Eigen::Ref<Vector> r) {
-          rod_.rhs(t, y, r);
-          r = yp - r;
-          // muscle lengths: algebraic, Delta - L(y) (semi_discrete_rod.hpp)
-          const int m = rod_.unknown_size();
-          if (m > 0) rod_.actuator_rows(t, y, y.tail(m), r.tail(m));
+          rod_.ida_residual(t, y, yp, r);
         },
         [this](double t, double cj, const ConstRef& y, const ConstRef&, const ConstRef&,
                IdaSolver::SparseMatrix& J) { rod_.newton_matrix(t, y, cj, 1.0, J); },
@@ -152,7 +148,7 @@ class IdaReference final : public Stepper {
     ida_ = std::make_unique<IdaSolver>(
         rod_.stabilised_pattern(),
         [this](double t, const ConstRef& y, const ConstRef& yp, Eigen::Ref<Vector> r) {
-          rod_.stabilised_residual(t, piece_, y, yp, r);
+          rod_.ida_residual_stabilised(t, piece_, y, yp, r);
         },
         [this](double t, double cj, const ConstRef& y, const ConstRef&, const ConstRef&,
                IdaSolver::SparseMatrix& J) { rod_.stabilised_newton_matrix(t, piece_, y, cj, J); },

@@ -215,6 +215,15 @@ void SemiDiscreteRod::set_state(const ConstRef& y) const {
   for (int j = 0; j + 1 < n_; ++j) xi_[j] = (g_[j].inverse() * g_[j + 1]).log() / ds_;
 }
 
+void SemiDiscreteRod::ida_residual(double t, const ConstRef& y, const ConstRef& yp,
+                                   Eigen::Ref<Vector> r) const {
+  rhs(t, y, r);  // (3.38)-(3.41), (3.8) on the staggered grid
+  r = yp - r;
+  // muscle lengths: algebraic, Delta - L(y)
+  const int m = unknown_size();
+  if (m > 0) actuator_rows(t, y, y.tail(m), r.tail(m));
+}
+
 void SemiDiscreteRod::constraint(const double* y, double* c) const {
   unpack_nodes(y);
   for (int j = 0; j + 1 < n_; ++j) {

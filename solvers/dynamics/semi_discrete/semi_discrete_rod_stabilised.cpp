@@ -81,7 +81,7 @@ double schedule_slope(const scene::ScalarSchedule& s, double t) {
 /// for a chamber.
 double target_rate(const TendonActuator& a, double t) {
   const double slope = schedule_slope(a.input, t);
-  return a.is_cable ? -slope : slope / a.chamber_area;
+  return a.is_cable ? -slope : loads::chamber_length(slope, a.chamber_area);  // (2.53)
 }
 
 }  // namespace
@@ -219,12 +219,12 @@ void SemiDiscreteRod::segment_rates(std::vector<double>& seg) const {
   }
 }
 
-void SemiDiscreteRod::stabilised_residual(double t, double t_piece, const ConstRef& y,
+void SemiDiscreteRod::ida_residual_stabilised(double t, double t_piece, const ConstRef& y,
                                           const ConstRef& yp, Eigen::Ref<Vector> r) const {
   const Layout lay = layout(true, kirchhoff_);
   const int nc = constraint_size(), iMu = lay.n, iMuX = lay.n + nc;
   if (y.size() != stabilised_size() || yp.size() != y.size() || r.size() != y.size())
-    throw std::invalid_argument("SemiDiscreteRod::stabilised_residual: bad sizes");
+    throw std::invalid_argument("SemiDiscreteRod::ida_residual_stabilised: bad sizes");
   double diss = 0.0, work = 0.0;
   evaluate(t, y.data(), r.data(), diss, work, kirchhoff_ ? y.data() + lay.iF : nullptr,
            m_ ? y.data() + lay.iX : nullptr);

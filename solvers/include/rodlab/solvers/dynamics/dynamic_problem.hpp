@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "rodlab/lie/se3.hpp"
+#include "rodlab/loads/fluidic_chamber.hpp"
 #include "rodlab/loads/gravity.hpp"
 #include "rodlab/loads/muscle_law.hpp"
 #include "rodlab/loads/tendon.hpp"
@@ -76,7 +77,7 @@ struct TendonActuator {
   /// reference configuration: rest - displacement(t) for a cable (2.47), volume(t) / A_c for a
   /// chamber (the chamber's section is rigid, so V = A_c x its length; docs/statics.md).
   double target_length(double t, double rest) const {
-    return is_cable ? rest - input.at(t) : input.at(t) / chamber_area;
+    return is_cable ? rest - input.at(t) : loads::chamber_length(input.at(t), chamber_area);
   }
 };
 

@@ -152,6 +152,11 @@ class SemiDiscreteRod {
   /// The same with the actuator unknowns x (unknown_size()) given apart from y.
   void rhs(double t, const ConstRef& y, const ConstRef& forces, const ConstRef& x,
            Eigen::Ref<Vector> f) const;
+  /// IDA's residual of the semi-discrete rod (the ODE above as a DAE): F = y' - f(t, y) for the
+  /// node and ledger rows ((3.38)-(3.41), (3.8)), and the muscles' algebraic rows
+  /// (Delta - L(y)) / L (actuator_rows). Kirchhoff rods and length control use
+  /// ida_residual_stabilised instead.
+  void ida_residual(double t, const ConstRef& y, const ConstRef& yp, Eigen::Ref<Vector> r) const;
   /// c_k(y) = nu(log(g_k^-1 g_(k+1))) / ds - nu* into c (constraint_size()), Kirchhoff rods.
   void constraint(const ConstRef& y, Eigen::Ref<Vector> c) const;
 
@@ -212,8 +217,8 @@ class SemiDiscreteRod {
   Vector stabilised_tolerance_scale() const;
   /// The stabilised layout of a rest_state() vector (forces and multipliers 0).
   Vector stabilised_from_rest(const ConstRef& rest) const;
-  /// IDA's residual (above).
-  void stabilised_residual(double t, double t_piece, const ConstRef& y, const ConstRef& yp,
+  /// IDA's residual in the stabilised index-2 form (above).
+  void ida_residual_stabilised(double t, double t_piece, const ConstRef& y, const ConstRef& yp,
                            Eigen::Ref<Vector> r) const;
   /// The pattern of IDA's Newton matrix dF/dy + cj dF/dy' for this residual.
   SparseMatrix stabilised_pattern() const;
