@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "studies/fit.hpp"
+#include "studies/stable_step.hpp"
 #include "studies/work_precision.hpp"
 
 namespace study = rodlab::validation::study;
@@ -118,4 +119,22 @@ BOOST_AUTO_TEST_CASE(recommend_on_hand_made_rows) {
   BOOST_TEST(!r4.best.has_value());
   BOOST_TEST(!r4.fastest_meeting_tol.has_value());
   BOOST_TEST((r4.most_accurate->scheme == "c" || r4.most_accurate->scheme == "d"));
+}
+
+// The stable-step bisection (stable_step.hpp) on a known threshold: dt <= 0.37 is stable. The
+// bracket [0.1, 1] closes geometrically to hi / lo <= 1.001 around it, in
+// ceil(log2(ln 10 / ln 1.001)) = 12 runs.
+BOOST_AUTO_TEST_CASE(stable_step_bisection_brackets_a_known_threshold) {
+  int calls = 0;
+  const auto b = study::bisect_stable_step(
+      [&](double dt) {
+        ++calls;
+        return dt <= 0.37;
+      },
+      0.1, 1.0, 1.001);
+  BOOST_TEST(b.stable <= 0.37);
+  BOOST_TEST(b.unstable > 0.37);
+  BOOST_TEST(b.unstable / b.stable <= 1.001);
+  BOOST_TEST(b.runs == 12);
+  BOOST_TEST(calls == 12);
 }

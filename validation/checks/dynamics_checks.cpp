@@ -29,6 +29,7 @@
 #include "rodlab/solvers/statics/solve_static.hpp"
 
 #include "checks/dynamics_runs.hpp"
+#include "studies/stable_step.hpp"
 #include "reference/reference_rods.hpp"
 
 namespace rodlab::validation {
@@ -196,13 +197,12 @@ void stability_limit(const ValidationContext& context, DynamicsData& /*data*/,
     const auto stable = [&](double dt) {
       return simulate(s, "variational", n, dt, 0.05, scene::Initial::straight, 5).converged;
     };
-    double lo = 0.8, hi = 1.25;  // ratios to the computed limit
-    bool bracket = stable(lo * computed) && !stable(hi * computed);
-    for (int i = 0; bracket && i < 10; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (stable(mid * computed) ? lo : hi) = mid;
-    }
-    const double ratio = 0.5 * (lo + hi);
+    // The bracket [0.8, 1.25] x computed, bisected to 0.1 % (studies/stable_step.hpp).
+    const double lo = 0.8 * computed, hi = 1.25 * computed;
+    const bool bracket = stable(lo) && !stable(hi);
+    const auto b = bracket ? study::bisect_stable_step(stable, lo, hi, 1.001)
+                           : study::StepBracket{lo, hi, 0};
+    const double ratio = std::sqrt(b.stable * b.unstable) / computed;
     Check c = range_check("variational: measured / computed stability limit (N = " +
                               std::to_string(n) + ", alpha = " + io::format_number(alpha) + " Pa s)",
                           ratio, 0.95, 1.05,

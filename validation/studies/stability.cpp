@@ -1,4 +1,5 @@
 #include "studies/stability.hpp"
+#include "studies/stable_step.hpp"
 
 #include <cmath>
 
@@ -57,12 +58,9 @@ ExplicitLimit bisect_limit(const Settings& s, const std::string& scheme, double 
       return out;
     }
   }
-  while (hi / lo > kBisectionRatio) {
-    const double mid = std::sqrt(lo * hi);
-    (stable(mid) ? lo : hi) = mid;
-  }
-  out.dt_max = lo;
-  out.dt_unstable = hi;
+  const StepBracket b = bisect_stable_step(stable, lo, hi, kBisectionRatio);
+  out.dt_max = b.stable;
+  out.dt_unstable = b.unstable;
   return out;
 }
 
