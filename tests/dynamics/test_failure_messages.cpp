@@ -22,19 +22,13 @@ using namespace rodlab::testing::dynamics;
 constexpr double kDt = 2.5e-7;
 constexpr int kNodes = 20;
 
+/// The support's rod under gravity, made a steel needle.
 scene::Scene steel_needle() {
-  return io::load_scene_from_string(R"(schema: rodlab.scene/1
-name: steel-needle
-rod:
-  length: 0.01
-  section: {shape: circle, diameter: 0.002}
-  material: {E: 2.0e11, G: 8.0e10, rho: 7800}
-tip:
-  free: {}
-loads:
-  gravity: [-9.81, 0, 0]
-)",
-                                    "steel-needle.yaml");
+  scene::Scene s = rod_scene("{gravity: [-9.81, 0, 0]}", "{}");
+  s.rod.length = 0.01;
+  s.rod.section = rod::Circle{0.002};
+  s.rod.material = rod::Material{2.0e11, 8.0e10, 7800.0, 0.0};  // E, G, rho, viscosity
+  return s;
 }
 
 bool contains(const std::string& text, const std::string& part) {
