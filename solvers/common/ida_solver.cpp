@@ -268,7 +268,8 @@ IdaStats IdaSolver::advance(double tout) {
   Impl& d = *impl_;
   if (!d.initialized) throw std::logic_error("IdaSolver::advance: initialize() was not called");
   RODLAB_THROW_UNLESS(std::isfinite(tout) && tout > d.t,
-                      "IdaSolver::advance: tout = {:g} must be finite and after the current time {:g}",
+                      "IdaSolver::advance: tout = {:g} must be finite and after the current time "
+                      "{:g}",
                       tout, d.t);
   void* mem = d.memory.get();
   const IdaStats before = d.counters();

@@ -63,7 +63,8 @@ std::string kinls_flag_name(long flag) {
 
 void check_kin(int flag, const char* call) {
   if (flag != KIN_SUCCESS)
-    throw std::runtime_error(rodlab::format("KINSOL: {} failed with {}", call, kin_flag_name(flag)));
+    throw std::runtime_error(
+        rodlab::format("KINSOL: {} failed with {}", call, kin_flag_name(flag)));
 }
 
 void check_kinls(int flag, const char* call) {
@@ -231,8 +232,9 @@ KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacob
     case KIN_VECTOROP_ERR:
     case KIN_CONTEXT_ERR:
       // Set-up errors, not convergence failures.
-      throw std::runtime_error(rodlab::format("KINSOL: KINSol failed with {}{}", stats.flag_name,
-                                              call.message.empty() ? "" : " (" + call.message + ")"));
+      throw std::runtime_error(
+          rodlab::format("KINSOL: KINSol failed with {}{}", stats.flag_name,
+                         call.message.empty() ? "" : " (" + call.message + ")"));
     default: break;
   }
   stats.converged = flag == KIN_SUCCESS || flag == KIN_INITIAL_GUESS_OK;

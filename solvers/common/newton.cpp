@@ -108,8 +108,8 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
     out.F = F_new;
   }
   if (out.F.lpNorm<Eigen::Infinity>() <= options.tol) return finish(true, "");
-  return finish(false,
-                rodlab::format("no convergence within {} Newton iterations", options.max_iterations));
+  return finish(false, rodlab::format("no convergence within {} Newton iterations",
+                                      options.max_iterations));
 }
 
 }  // namespace rodlab::solvers

@@ -64,7 +64,8 @@ T check_created(T object, std::string_view module, const char* call) {
 inline ContextPtr make_context(std::string_view module) {
   SUNContext ctx = nullptr;
   if (const int flag = SUNContext_Create(nullptr, &ctx); flag != 0 || ctx == nullptr)
-    throw std::runtime_error(rodlab::format("{}: SUNContext_Create failed with flag {}", module, flag));
+    throw std::runtime_error(
+        rodlab::format("{}: SUNContext_Create failed with flag {}", module, flag));
   return ContextPtr(ctx);
 }
 

@@ -37,9 +37,9 @@ RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem
       const double miss = problem.clamp_mismatch(problem.reference_tip()).lpNorm<Eigen::Infinity>();
       RODLAB_THROW_UNLESS(
           miss <= kClampRestTolerance,
-          "tip.clamped: the clamp's pose is not the rest shape's tip pose (scaled mismatch {:.3g}), "
-          "so dynamics.initial: straight is not a state of the rod; use dynamics.initial: static "
-          "(the clamped equilibrium under the t = 0 loads)",
+          "tip.clamped: the clamp's pose is not the rest shape's tip pose (scaled mismatch "
+          "{:.3g}), so dynamics.initial: straight is not a state of the rod; use "
+          "dynamics.initial: static (the clamped equilibrium under the t = 0 loads)",
           miss);
     }
     for (int j = 0; j < n; ++j)

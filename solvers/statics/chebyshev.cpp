@@ -857,7 +857,8 @@ class ChebyshevSolver {
         if (!split) break;
       } else {
         if (!reasons.empty()) reasons += "; ";
-        reasons += rodlab::format("{} {}: ", C.elements(), C.elements() == 1 ? "element" : "elements");
+        reasons +=
+            rodlab::format("{} {}: ", C.elements(), C.elements() == 1 ? "element" : "elements");
         reasons += a.reason;
         if (!best) {
           best.emplace(std::move(C));

@@ -336,9 +336,10 @@ class Collocation {
     cuts.push_back(L_);
     const int stretches = static_cast<int>(cuts.size()) - 1;
     const int intervals = N_ - 1;
-    RODLAB_THROW_UNLESS(intervals >= stretches,
-                        "kinsol: {} nodes cannot hold the {} actuator breakpoints (need at least {})",
-                        N_, stretches - 1, stretches + 1);
+    RODLAB_THROW_UNLESS(
+        intervals >= stretches,
+        "kinsol: {} nodes cannot hold the {} actuator breakpoints (need at least {})", N_,
+        stretches - 1, stretches + 1);
     std::vector<double> ideal(stretches);
     std::vector<int> count(stretches);
     int total = 0;

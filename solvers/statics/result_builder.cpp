@@ -44,7 +44,8 @@ void check_cables_taut(const StaticProblem& problem, result::StaticResult& out) 
     if (T < 0.0 && out.converged) {
       out.converged = false;
       out.reason = rodlab::format(
-          "cable {} would need a compressive force ({:g} N) to reach its displacement: it goes slack",
+          "cable {} would need a compressive force ({:g} N) to reach its displacement: it goes "
+          "slack",
           k, T);
     }
   }

@@ -1,20 +1,14 @@
 // base and tip: poses, the free tip's wrench (also used by loads.distributed).
 #include <Eigen/SVD>
 #include <cmath>
-#include <cstdio>
 
+#include "rodlab/check.hpp"
 #include "scene_readers.hpp"
 
 namespace rodlab::io::detail {
 namespace {
 
 constexpr double kRotationTolerance = 1e-6;
-
-std::string three_digits(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
 
 bool is_word(const Field& f, std::string_view word) {
   return f.node.IsScalar() && f.node.Scalar() == word;
@@ -27,8 +21,9 @@ std::optional<lie::SO3> read_rotation_matrix(Checker& c, const Field& f) {
   const double orthogonality = (R->transpose() * *R - Eigen::Matrix3d::Identity()).norm();
   const double det = R->determinant();
   if (!(orthogonality <= kRotationTolerance && std::abs(det - 1.0) <= kRotationTolerance)) {
-    c.error(f, "must be a rotation matrix, orthonormal with det +1 to 1e-6 (got ||R^T R - I|| = " +
-                   three_digits(orthogonality) + ", det = " + three_digits(det) + ")");
+    c.error(f, rodlab::format("must be a rotation matrix, orthonormal with det +1 to 1e-6 (got "
+                              "||R^T R - I|| = {:.3g}, det = {:.3g})",
+                              orthogonality, det));
     return std::nullopt;
   }
   // Nearest rotation: the polar factor U V^T of R = U S V^T.

@@ -70,7 +70,8 @@ class ShootingNewton {
     auto norm = [](const Vec& v) { return v.template lpNorm<Eigen::Infinity>(); };
     while (!(norm(r) <= tol)) {
       if (out.shots >= max_shots || !r.allFinite()) {
-        out.failure = rodlab::format("single shooting did not converge (tip residual {:g})", norm(r));
+        out.failure =
+            rodlab::format("single shooting did not converge (tip residual {:g})", norm(r));
         return out;
       }
       const Eigen::PartialPivLU<Mat> lu(J_);
