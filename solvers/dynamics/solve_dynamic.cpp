@@ -128,6 +128,7 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
     out.energy.total.push_back(e.total());
     out.max_det_deviation.push_back(stepper->max_det_deviation());
     const double active = e.kinetic + e.strain;
+    if (!failure.empty()) return;  // a failed step's own reason (it names t and dt) stays
     if (!std::isfinite(e.total()) || !out.tip_position.back().allFinite())
       failure = rodlab::format("unstable: the state became non-finite by t = {:g} s", t);
     else if (active > kUnstableFactor * energy_budget(problem, e0, e))
