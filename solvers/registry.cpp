@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <stdexcept>
-#include <string>
 
+#include "rodlab/check.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/implicit_midpoint_collocation.hpp"
 #include "rodlab/solvers/dynamics/shooting/bdf_alpha.hpp"
@@ -129,8 +129,8 @@ const SchemeEntry& registry_entry(SchemeId id) { return kRegistry[static_cast<in
 const SchemeInfo& scheme_for(std::string_view name, Problem problem) {
   const auto info = find_scheme(name);
   if (!info || info->problem != problem)
-    throw std::invalid_argument("unknown " + std::string(to_string(problem)) + " scheme '" +
-                                std::string(name) + "' (valid: " + scheme_names(problem) + ")");
+    throw std::invalid_argument(rodlab::format("unknown {} scheme '{}' (valid: {})",
+                                                to_string(problem), name, scheme_names(problem)));
   return scheme_info(info->id);
 }
 
