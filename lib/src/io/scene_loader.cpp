@@ -2,6 +2,7 @@
 #include "rodlab/io/scene_loader.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -14,9 +15,13 @@
 
 #include "overrides.hpp"
 #include "scene_readers.hpp"
+#include "yaml_documents.hpp"
 
 namespace rodlab::io {
 namespace {
+
+/// A scene is a few kilobytes; this bounds what a mistaken path can make the loader read.
+constexpr std::uintmax_t kMaxSceneBytes = 16u << 20;
 
 std::string join_lines(const std::vector<SceneDiagnostic>& diagnostics) {
   std::string out;
@@ -108,23 +113,23 @@ SceneError::SceneError(std::vector<SceneDiagnostic> diagnostics)
 
 scene::Scene load_scene_from_string(const std::string& yaml_text, const std::string& source_name,
                                     std::span<const Override> overrides) {
-  std::vector<YAML::Node> documents;
+  detail::YamlDocuments documents;
   try {
-    documents = YAML::LoadAll(yaml_text);
+    documents = detail::read_documents(yaml_text);
   } catch (const YAML::Exception& e) {
     const bool at = !e.mark.is_null();
     fail(source_name, at ? e.mark.line + 1 : 0, at ? e.mark.column + 1 : 0,
          "YAML syntax error: " + e.msg);
   }
-  if (documents.empty() || (documents.size() == 1 && documents.front().IsNull()))
+  if (documents.count == 0 || (documents.count == 1 && documents.first.IsNull()))
     fail(source_name, 0, 0, "the scene is empty");
-  if (documents.size() > 1) {
-    const YAML::Mark m = documents[1].Mark();
+  if (documents.count > 1) {
+    const YAML::Mark m = documents.starts[1];
     fail(source_name, m.line + 1, m.column + 1,
          rodlab::format("a scene is a single YAML document (got {} documents separated by ---)",
-                        documents.size()));
+                        documents.count));
   }
-  YAML::Node root = documents.front();
+  YAML::Node root = documents.first;
   if (!root.IsMap()) {
     const YAML::Mark m = root.Mark();
     fail(source_name, m.line + 1, m.column + 1,
@@ -148,6 +153,13 @@ scene::Scene load_scene_from_string(const std::string& yaml_text, const std::str
 scene::Scene load_scene(const std::string& path, std::span<const Override> overrides) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) fail(path, 0, 0, "is a directory, not a scene file");
+  // Read only regular files of bounded size: a device (/dev/zero) or a FIFO without a writer
+  // would be read, or waited on, forever.
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    fail(path, 0, 0, "is not a regular file (a device, FIFO or socket); a scene is a YAML file");
+  if (const auto size = std::filesystem::file_size(path, ec); !ec && size > kMaxSceneBytes)
+    fail(path, 0, 0,
+         rodlab::format("is {} bytes; a scene file has at most {} bytes", size, kMaxSceneBytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, 0, 0, std::string("cannot open the scene file: ") + std::strerror(errno));
   std::ostringstream text;
