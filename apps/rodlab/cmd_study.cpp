@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rodlab/check.hpp"
 #include "rodlab/io/text_format.hpp"
 
 #include "command.hpp"
@@ -278,11 +279,11 @@ int run_sweep_kind(const std::string& kind, const study::Settings& settings,
 void check_grid_options(OptionReader& reader, std::optional<Problem> problem,
                         const std::optional<std::vector<int>>& nodes,
                         const std::optional<std::vector<double>>& dts, bool joint) {
-  if (problem == Problem::dynamics && nodes)
+  if (problem && nodes)
     for (const int n : *nodes)
-      if (n < 3) {
-        reader.problem("--nodes: the dynamics schemes need N >= 3 (got " + std::to_string(n) +
-                       ")");
+      if (n < solvers::min_nodes(*problem)) {
+        reader.problem(rodlab::format("--nodes: the {} schemes need N >= {} (got {})",
+                                      solvers::to_string(*problem), solvers::min_nodes(*problem), n));
         break;
       }
   if (dts && dts->size() > 1 && joint)

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <system_error>
 
+#include "rodlab/check.hpp"
 #include "rodlab/io/result_writer.hpp"
 #include "rodlab/io/text_format.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
@@ -112,7 +113,7 @@ SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::stri
     o.scheme = fitting_scheme(*name, problem, command, why);
     if (!o.scheme) reader.problem("--scheme: " + why);
   }
-  o.nodes = reader.integer(kNodesOption.name, 2);
+  o.nodes = reader.integer(kNodesOption.name, solvers::min_nodes(problem));
   o.tol = reader.positive(kTolOption.name);
   o.out = read_out_file(reader);
   if (const auto dt = reader.text(kDtOption.name)) {
@@ -201,6 +202,10 @@ DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& 
   auto& solve = run.solve;
   solve.scheme = std::string(run.scheme.name);
   solve.nodes = options.nodes.value_or(scene.solver.nodes);
+  if (solve.nodes < solvers::min_nodes(Problem::dynamics))
+    throw UsageError(rodlab::format("{}: the dynamics schemes need N >= {} (got {})",
+                                    options.nodes ? "--nodes" : "solver.nodes",
+                                    solvers::min_nodes(Problem::dynamics), solve.nodes));
   solve.tol = options.tol.value_or(scene.solver.tol);
   solve.max_iterations = scene.solver.max_iterations;
   const auto t_end = options.t_end ? options.t_end : dynamics.t_end;

@@ -92,7 +92,8 @@ void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options
 }
 
 result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolveOptions& options) {
-  if (options.nodes < 3) throw std::invalid_argument("nodes must be >= 3");
+  RODLAB_THROW_UNLESS(options.nodes >= min_nodes(Problem::dynamics), "nodes must be >= {}",
+                      min_nodes(Problem::dynamics));
   if (!(options.dt > 0.0) || !std::isfinite(options.dt))
     throw std::invalid_argument("dt must be > 0");
   if (!(options.t_end > 0.0) || !std::isfinite(options.t_end))

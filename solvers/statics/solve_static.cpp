@@ -3,13 +3,15 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "rodlab/check.hpp"
 #include "rodlab/solvers/registry.hpp"
 
 namespace rodlab::solvers::statics {
 
 result::StaticResult solve_static(const StaticProblem& problem, const StaticSolveOptions& options) {
   const SchemeInfo& scheme = scheme_for(options.scheme, Problem::statics);
-  if (options.nodes < 2) throw std::invalid_argument("nodes must be >= 2");
+  RODLAB_THROW_UNLESS(options.nodes >= min_nodes(Problem::statics), "nodes must be >= {}",
+                      min_nodes(Problem::statics));
   const auto start = std::chrono::steady_clock::now();
   result::StaticResult out = registry_entry(scheme.id).solve_static(problem, options);
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

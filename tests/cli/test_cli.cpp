@@ -196,6 +196,21 @@ BOOST_AUTO_TEST_CASE(check_reports_viscosity_and_actuators_when_present) {
 
 // --- option checking ------------------------------------------------------------------------
 
+// One rule for the node count (lib/include/rodlab/scene/schemes.hpp, min_nodes): statics from
+// 2, dynamics from 3, in the option check and for the scene's solver.nodes alike (exit 2 up
+// front, not a solver's "nodes must be >= 3").
+BOOST_AUTO_TEST_CASE(node_minimum_is_one_rule_per_problem) {
+  Sandbox box;
+  const std::string scene = quote(kScene);
+  expect_bad_input(box, "dynamic " + scene + " --nodes 2 --t-end 0.01",
+                   {"--nodes", "integer >= 3", "got 2"});
+  expect_bad_input(box, "dynamic " + scene + " --set solver.nodes=2 --t-end 0.01",
+                   {"solver.nodes", "N >= 3", "got 2"});
+  const Run ok = box.run("static " + scene + " --nodes 2 --scheme rkmk-rk4");
+  BOOST_TEST(ok.status != 2, ok.err);
+}
+
+
 BOOST_AUTO_TEST_CASE(bad_option_values_name_the_option) {
   Sandbox box;
   const std::string scene = quote(kScene);

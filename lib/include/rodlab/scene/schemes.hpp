@@ -81,6 +81,10 @@ constexpr bool catalogue_indexed_by_id() {
 static_assert(catalogue_indexed_by_id(), "kSchemeCatalogue must list the schemes in SchemeId order");
 }  // namespace detail
 
+/// The fewest nodes a scheme of the problem runs on (statics: a segment; dynamics: a node
+/// between base and tip): the one rule of the option check, the studies and the solvers.
+constexpr int min_nodes(Problem problem) { return problem == Problem::statics ? 2 : 3; }
+
 /// All schemes, statics first, in the order of the spec's tables (all_schemes()[i].id == i).
 std::span<const SchemeInfo> all_schemes();
 const SchemeInfo& scheme_info(SchemeId id);

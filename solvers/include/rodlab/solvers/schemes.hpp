@@ -7,6 +7,7 @@ namespace rodlab::solvers {
 
 using scene::all_schemes;
 using scene::find_scheme;
+using scene::min_nodes;
 using scene::Problem;
 using scene::scheme_info;
 using scene::scheme_names;
