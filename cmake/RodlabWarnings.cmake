@@ -4,3 +4,12 @@ target_compile_options(rodlab_warnings INTERFACE -Wall -Wextra -Wpedantic)
 if(RODLAB_WERROR)
   target_compile_options(rodlab_warnings INTERFACE -Werror)
 endif()
+
+# -DRODLAB_SANITIZE=ON: AddressSanitizer + UndefinedBehaviorSanitizer on every rodlab target (and
+# the link), undefined behaviour fatal. Run the tests with ASAN_OPTIONS and LSAN_OPTIONS as
+# docs/development.md says (OpenMPI's own start-up leaks need the suppression file there).
+if(RODLAB_SANITIZE)
+  target_compile_options(rodlab_warnings INTERFACE
+    -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g)
+  target_link_options(rodlab_warnings INTERFACE -fsanitize=address,undefined)
+endif()

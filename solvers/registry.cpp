@@ -94,18 +94,18 @@ std::unique_ptr<Stepper> ida(const DynamicProblem& problem, const DynamicSolveOp
 
 using statics::RkmkMethod;
 constexpr std::array<SchemeEntry, scene::kSchemeCount> kRegistry{{
-    {SchemeId::rkmk_euler_explicit, &rkmk<RkmkMethod::euler_explicit>, nullptr},
-    {SchemeId::rkmk_euler_implicit, &rkmk<RkmkMethod::euler_implicit>, nullptr},
-    {SchemeId::rkmk_midpoint_explicit, &rkmk<RkmkMethod::midpoint_explicit>, nullptr},
-    {SchemeId::rkmk_midpoint_implicit, &rkmk<RkmkMethod::midpoint_implicit>, nullptr},
-    {SchemeId::rkmk_rk4, &rkmk<RkmkMethod::rk4>, nullptr},
-    {SchemeId::chebyshev, &chebyshev, nullptr},
-    {SchemeId::kinsol, &kinsol, nullptr},
-    {SchemeId::variational, nullptr, &variational},
-    {SchemeId::implicit_midpoint, nullptr, &implicit_midpoint},
-    {SchemeId::implicit_midpoint_collocation, nullptr, &collocation},
-    {SchemeId::bdf_alpha, nullptr, &bdf_alpha},
-    {SchemeId::ida, nullptr, &ida},
+    {SchemeId::rkmk_euler_explicit, StaticSolver{&rkmk<RkmkMethod::euler_explicit>}},
+    {SchemeId::rkmk_euler_implicit, StaticSolver{&rkmk<RkmkMethod::euler_implicit>}},
+    {SchemeId::rkmk_midpoint_explicit, StaticSolver{&rkmk<RkmkMethod::midpoint_explicit>}},
+    {SchemeId::rkmk_midpoint_implicit, StaticSolver{&rkmk<RkmkMethod::midpoint_implicit>}},
+    {SchemeId::rkmk_rk4, StaticSolver{&rkmk<RkmkMethod::rk4>}},
+    {SchemeId::chebyshev, StaticSolver{&chebyshev}},
+    {SchemeId::kinsol, StaticSolver{&kinsol}},
+    {SchemeId::variational, StepperFactory{&variational}},
+    {SchemeId::implicit_midpoint, StepperFactory{&implicit_midpoint}},
+    {SchemeId::implicit_midpoint_collocation, StepperFactory{&collocation}},
+    {SchemeId::bdf_alpha, StepperFactory{&bdf_alpha}},
+    {SchemeId::ida, StepperFactory{&ida}},
 }};
 
 /// Every catalogue entry, in order, with the kind of function its problem needs.
@@ -113,9 +113,7 @@ constexpr bool covers_the_catalogue() {
   for (int i = 0; i < scene::kSchemeCount; ++i) {
     const SchemeEntry& e = kRegistry[i];
     const bool statics = scene::kSchemeCatalogue[i].problem == Problem::statics;
-    if (static_cast<int>(e.id) != i) return false;
-    if (statics != (e.solve_static != nullptr) || statics == (e.make_stepper != nullptr))
-      return false;
+    if (static_cast<int>(e.id) != i || e.run.index() != (statics ? 0u : 1u)) return false;
   }
   return true;
 }
@@ -125,6 +123,18 @@ static_assert(covers_the_catalogue(),
 }  // namespace
 
 const SchemeEntry& registry_entry(SchemeId id) { return kRegistry[static_cast<int>(id)]; }
+
+StaticSolver static_solver(SchemeId id) {
+  const auto* f = std::get_if<StaticSolver>(&registry_entry(id).run);
+  RODLAB_THROW_UNLESS(f != nullptr, "'{}' is not a statics scheme", scheme_info(id).name);
+  return *f;
+}
+
+StepperFactory stepper_factory(SchemeId id) {
+  const auto* f = std::get_if<StepperFactory>(&registry_entry(id).run);
+  RODLAB_THROW_UNLESS(f != nullptr, "'{}' is not a dynamics scheme", scheme_info(id).name);
+  return *f;
+}
 
 const SchemeInfo& scheme_for(std::string_view name, Problem problem) {
   const auto info = find_scheme(name);

@@ -114,7 +114,7 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   std::string failure;
   const RestState initial = initial_state(scene, problem, options, failure);
   const std::unique_ptr<Stepper> stepper =
-      registry_entry(scheme.id).make_stepper(problem, options, initial);
+      stepper_factory(scheme.id)(problem, options, initial);
 
   const Energy e0 = stepper->energy();
   auto record = [&](double t) {

@@ -13,7 +13,7 @@ result::StaticResult solve_static(const StaticProblem& problem, const StaticSolv
   RODLAB_THROW_UNLESS(options.nodes >= min_nodes(Problem::statics), "nodes must be >= {}",
                       min_nodes(Problem::statics));
   const auto start = std::chrono::steady_clock::now();
-  result::StaticResult out = registry_entry(scheme.id).solve_static(problem, options);
+  result::StaticResult out = static_solver(scheme.id)(problem, options);
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.scheme = options.scheme;
   return out;

@@ -4,6 +4,7 @@
 // through it; registry.cpp holds the one table, checked at compile time to cover the catalogue
 // in order, with the right kind of entry for each scheme's problem.
 #include <memory>
+#include <variant>
 
 #include "rodlab/result/static_result.hpp"
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
@@ -21,14 +22,19 @@ using StepperFactory = std::unique_ptr<dynamics::Stepper> (*)(
     const dynamics::DynamicProblem& problem, const dynamics::DynamicSolveOptions& options,
     const dynamics::RestState& initial);
 
+/// A scheme and what runs it: a StaticSolver for a statics scheme, a StepperFactory for a
+/// dynamics one.
 struct SchemeEntry {
   SchemeId id;
-  StaticSolver solve_static = nullptr;     ///< set for statics schemes only
-  StepperFactory make_stepper = nullptr;   ///< set for dynamics schemes only
+  std::variant<StaticSolver, StepperFactory> run;
 };
 
 /// The entry of a scheme.
 const SchemeEntry& registry_entry(SchemeId id);
+/// What runs a statics scheme; throws std::invalid_argument for a dynamics scheme.
+StaticSolver static_solver(SchemeId id);
+/// What makes a dynamics scheme's stepper; throws std::invalid_argument for a statics scheme.
+StepperFactory stepper_factory(SchemeId id);
 
 /// The scheme of that name if it solves `problem`; otherwise throws std::invalid_argument
 /// naming the valid schemes.
