@@ -26,9 +26,6 @@ THESIS = ROOT.parent / "shared" / "reference" / "thesis-soft-robots-cosserat.md"
 DIRS = ("lib", "solvers", "validation", "apps")
 
 CITATION = re.compile(r"\((\d)\.(\d+)\)(?:\s*-\s*\((\d)\.(\d+)\))?")
-DECLARATION = re.compile(
-    r"(?:\b(?:class|struct|enum class|enum|using|namespace)\s+(\w+))"
-    r"|(?:([~\w:]+)\s*\((?![^()]*\)\s*;?\s*$)?)")
 KEYWORDS = {"if", "for", "while", "switch", "return", "catch", "sizeof", "static_cast",
             "const_cast", "reinterpret_cast", "dynamic_cast", "decltype", "alignof", "assert",
             "defined", "noexcept", "requires", "operator", "template", "throw", "new", "delete"}
