@@ -25,9 +25,10 @@ int run(const Invocation& inv) {
 
 const Command& dynamic_command() {
   // A local static: the scheme options' help lines are made at start-up in another file.
-  static const std::array<OptionSpec, 12> options{
-      kSchemeOption,  kNodesOption, kTolOption,  kDtOption,   kTEndOption,  kOutputEveryOption,
-      kOutFileOption, kSetOption,   kRtolOption, kAtolOption, kAlphaOption, kGridOption};
+  static const std::array<OptionSpec, 13> options{
+      kSchemeOption, kNodesOption, kTolOption,  kDtOption,   kTEndOption,  kOutputEveryOption,
+      kOutFileOption, kSetOption,  kRtolOption, kAtolOption, kAlphaOption, kGridOption,
+      kMaxWallTimeOption};
   static const Command command{
       "dynamic",
       "SCENE [options]",

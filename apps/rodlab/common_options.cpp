@@ -36,6 +36,10 @@ const OptionSpec kRtolOption{"--rtol", "X", kRtolHelp};
 const OptionSpec kAtolOption{"--atol", "X", kAtolHelp};
 const OptionSpec kAlphaOption{"--alpha", "X", kAlphaHelp};
 const OptionSpec kGridOption{"--grid", "euler|staggered", kGridHelp};
+const OptionSpec kMaxWallTimeOption{
+    "--max-wall-time", "S",
+    "stop the run (exit 1, the result so far written) once it has taken S seconds, S > 0; "
+    "default: no limit"};
 
 std::optional<solvers::SchemeInfo> fitting_scheme(std::string_view name, Problem problem,
                                                   std::string_view command, std::string& why) {
@@ -135,6 +139,7 @@ SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::stri
   o.output_every = reader.integer(kOutputEveryOption.name, 1);
   o.rtol = reader.positive(kRtolOption.name);
   o.atol = reader.positive(kAtolOption.name);
+  o.max_wall_time = reader.positive(kMaxWallTimeOption.name);
   if (const auto alpha = reader.text(kAlphaOption.name)) {
     if (const auto v = to_double(*alpha); v && *v >= -0.5 && *v <= 0.0)
       o.alpha = *v;
@@ -225,6 +230,7 @@ DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& 
   solvers::dynamics::apply_scene_options(scene, solve);  // then the command line over the scene
   if (options.alpha) solve.alpha = *options.alpha;
   if (options.grid) solve.grid = *solvers::dynamics::shooting_grid_from_name(*options.grid);
+  solve.max_wall_time = options.max_wall_time.value_or(0.0);
   return run;
 }
 

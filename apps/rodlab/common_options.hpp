@@ -40,6 +40,7 @@ extern const OptionSpec kRtolOption;   ///< ida: rtol
 extern const OptionSpec kAtolOption;   ///< ida: atol
 extern const OptionSpec kAlphaOption;  ///< bdf-alpha: alpha
 extern const OptionSpec kGridOption;   ///< implicit-midpoint, bdf-alpha: the march's grid
+extern const OptionSpec kMaxWallTimeOption;  ///< dynamic: the wall-time guard
 inline constexpr OptionSpec kOutputEveryOption{
     "--output-every", "K", "record every K-th step, integer >= 1; default: dynamics.output_every"};
 
@@ -69,6 +70,7 @@ struct SolveOptions {
   std::optional<double> rtol, atol;
   std::optional<double> alpha;  ///< bdf-alpha
   std::optional<std::string> grid;  ///< implicit-midpoint, bdf-alpha: "euler" or "staggered"
+  std::optional<double> max_wall_time;  ///< seconds
 };
 
 /// Reads the options of `command` that are among the shared ones above, recording problems

@@ -9,6 +9,7 @@
 
 #include "rodlab/check.hpp"
 #include "rodlab/rod/energies.hpp"
+#include "rodlab/solvers/dynamics/shooting/step_bound.hpp"
 #include "rodlab/solvers/registry.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
@@ -99,6 +100,8 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   if (!(options.t_end > 0.0) || !std::isfinite(options.t_end))
     throw std::invalid_argument("t_end must be > 0");
   if (options.output_every < 1) throw std::invalid_argument("output_every must be >= 1");
+  if (!(options.max_wall_time >= 0.0) || !std::isfinite(options.max_wall_time))
+    throw std::invalid_argument("max_wall_time must be >= 0");
   const SchemeInfo& scheme = scheme_for(options.scheme, Problem::dynamics);
   const DynamicProblem problem = DynamicProblem::from_scene(scene);
 
@@ -109,6 +112,12 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   // Equal steps that end exactly at t_end (a variational integrator keeps its step).
   const long steps = std::max(1L, std::lround(std::ceil(options.t_end / options.dt - 1e-9)));
   const double dt = options.t_end / static_cast<double>(steps);
+  if (scheme.id == SchemeId::implicit_midpoint || scheme.id == SchemeId::bdf_alpha) {
+    // refused before it starts where single shooting cannot converge (step_bound.hpp)
+    const std::string why =
+        single_shooting_step_problem(problem, options.scheme, options.grid, dt, options.tol);
+    if (!why.empty()) throw std::invalid_argument(why);
+  }
   out.dt = dt;
   const auto start = std::chrono::steady_clock::now();
   std::string failure;
@@ -146,6 +155,14 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
     t = t1;
     if (!status.ok) {
       failure = status.reason;
+      record(std::isfinite(status.reached) ? status.reached : t);
+      break;
+    }
+    if (options.max_wall_time > 0.0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+            options.max_wall_time && done < steps) {
+      failure = rodlab::format("the wall-time limit of {:g} s was reached at t = {:g} s",
+                               options.max_wall_time, t);
       record(t);
       break;
     }

@@ -50,16 +50,21 @@ inline scene::Scene actuated_scene(const std::string& loads, const std::string& 
 
 /// A stepper of the scheme named `scheme` with N nodes, at rest from `initial` (KINSOL / shooting
 /// tolerance tol; ida at rtol = atol = ida_tol).
+/// The shooting schemes (implicit-midpoint, bdf-alpha) on `grid`: these tests check the thesis'
+/// Euler grid by default (ShootingGrid::euler, kept by name); the library's default, the
+/// staggered grid, is tested in test_staggered_shooting.cpp and through the command line.
 inline std::unique_ptr<solvers::dynamics::Stepper> make_scheme(
     const std::string& scheme, const solvers::dynamics::DynamicProblem& P, int nodes,
-    const solvers::dynamics::RestState& initial, double tol = 1e-10, double ida_tol = 1e-10) {
+    const solvers::dynamics::RestState& initial, double tol = 1e-10, double ida_tol = 1e-10,
+    solvers::dynamics::ShootingGrid grid = solvers::dynamics::ShootingGrid::euler) {
   namespace d = solvers::dynamics;
   if (scheme == "variational") return d::make_variational(P, {nodes, 1e-12, 20}, initial);
-  if (scheme == "implicit-midpoint") return d::make_implicit_midpoint(P, {nodes, tol, 50}, initial);
+  if (scheme == "implicit-midpoint") return d::make_implicit_midpoint(P, {nodes, tol, 50, grid}, initial);
   if (scheme == "bdf-alpha") {
     d::BdfAlphaOptions o;
     o.nodes = nodes;
     o.tol = tol;
+    o.grid = grid;
     return d::make_bdf_alpha(P, o, initial);
   }
   if (scheme == "ida") {
@@ -183,6 +188,7 @@ inline solvers::dynamics::DynamicSolveOptions options(const std::string& scheme,
                                                        scene::Initial initial) {
   solvers::dynamics::DynamicSolveOptions o;
   o.scheme = scheme;
+  o.grid = solvers::dynamics::ShootingGrid::euler;  // the thesis' grid, as make_scheme
   o.nodes = nodes;
   o.dt = dt;
   o.t_end = t_end;

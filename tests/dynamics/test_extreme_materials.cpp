@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "rodlab/io/scene_loader.hpp"
@@ -11,8 +12,9 @@
 #include "rodlab/solvers/schemes.hpp"
 
 // Issue #4: a very stiff rod (steel, E = 200 GPa, a 1 mm wire) and a very soft one (E = 10 kPa):
-// every available dynamics scheme either runs or stops with its reason; none reports success
-// with a non-finite number. From the straight rod released under gravity (which excites every
+// every available dynamics scheme either runs, stops with its reason, or is refused before it
+// starts naming the scheme to use (exit 2 on the command line); none reports success with a
+// non-finite number. From the straight rod released under gravity (which excites every
 // mode, the stiff axial ones included), undamped.
 
 namespace {
@@ -54,7 +56,21 @@ void run_every_scheme(const scene::Scene& s) {
     o.nodes = kNodes;
     o.dt = std::min(solvers::dynamics::auto_time_step(problem, scheme, kNodes), T / 5);
     o.t_end = T;
-    const auto r = solvers::dynamics::solve_dynamic(s, o);
+    result::DynamicResult r;
+    try {
+      r = solvers::dynamics::solve_dynamic(s, o);
+    } catch (const std::invalid_argument& e) {
+      // refused before it starts (single shooting's lower step bound, step_bound.hpp): the
+      // message names the schemes to use instead
+      const std::string why = e.what();
+      BOOST_TEST_MESSAGE(s.name << " " << scheme << ": refused: " << why);
+      BOOST_TEST_CONTEXT(s.name << " / " << scheme) {
+        BOOST_TEST((scheme == "implicit-midpoint" || scheme == "bdf-alpha"));
+        BOOST_TEST(why.find("lower step bound") != std::string::npos, why);
+        BOOST_TEST(why.find("implicit-midpoint-collocation") != std::string::npos, why);
+      }
+      continue;
+    }
     BOOST_TEST_MESSAGE(s.name << " " << scheme << ": dt = " << r.dt << " s, t_end = " << T
                               << " s, converged " << r.converged << ", steps " << r.steps
                               << ", tip " << r.tip_position.back().transpose() << ", wall "

@@ -1,7 +1,9 @@
 #include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -9,6 +11,7 @@
 #include "rodlab/check.hpp"
 #include "rodlab/solvers/common/ida_solver.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {
@@ -24,7 +27,15 @@ class IdaReference final : public Stepper {
                         "ida: expected {} initial poses, got {}", rod_.nodes(), g0.size());
     if (!(options.rtol > 0.0) || !(options.atol > 0.0))
       throw std::invalid_argument("ida: rtol and atol must be > 0");
-    if (options.max_steps < 1) throw std::invalid_argument("ida: max_steps must be >= 1");
+    if (options.max_steps < 0) throw std::invalid_argument("ida: max_steps must be >= 0");
+    if (!(options.max_wall_time >= 0.0)) throw std::invalid_argument("ida: max_wall_time must be >= 0");
+    max_steps_ = options.max_steps;
+    omega_max_ = variational_max_frequency(problem, options.nodes);
+    if (options.max_wall_time > 0.0)
+      deadline_ = std::chrono::steady_clock::now() +
+                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(options.max_wall_time));
+    max_wall_time_ = options.max_wall_time;
     if (rod_.has_position_constraints()) {
       init_stabilised(options, g0);
       return;
@@ -37,7 +48,8 @@ class IdaReference final : public Stepper {
     IdaSolverOptions io;
     io.rtol = options.rtol;
     io.atol = options.atol * rod_.tolerance_scale();
-    io.max_steps = options.max_steps;
+    io.max_steps = options.max_steps > 0 ? std::min(options.max_steps, kIdaChunkSteps)
+                                         : kIdaChunkSteps;
 
     ida_ = std::make_unique<IdaSolver>(
         rod_.pattern(true),
@@ -69,19 +81,45 @@ class IdaReference final : public Stepper {
     return advance(t + dt);
   }
 
-  /// IDASolve to tout; the state is unpacked for the reports.
+  /// The internal steps allowed to reach tout from IDA's time (IdaOptions::max_steps).
+  long step_budget(double tout) const {
+    if (max_steps_ > 0) return max_steps_;
+    const double scaled = kIdaStepsPerRadian * (tout - ida_->time()) * omega_max_;
+    return std::max(kIdaMinStepBudget, static_cast<long>(std::min(scaled, 1e15)));
+  }
+
+  /// IDASolve to tout in chunks of kIdaChunkSteps internal steps, within the step budget and the
+  /// wall-time guard; the state is unpacked for the reports.
   StepStatus advance(double tout) {
-    const IdaStats s = ida_->advance(tout);
+    const long budget = step_budget(tout);
+    long steps = 0, iterations = 0;
+    IdaStats s;
+    while (true) {
+      s = ida_->advance(tout);
+      steps += s.steps;
+      iterations += s.nonlinear_iterations;
+      if (s.ok || s.flag_name != "IDA_TOO_MUCH_WORK") break;
+      if (steps >= budget) {
+        s.message = rodlab::format("{} internal steps (the budget of this step) taken before "
+                                   "reaching t = {:g} s", steps, tout);
+        break;
+      }
+      if (deadline_ && std::chrono::steady_clock::now() > *deadline_) {
+        s.message = rodlab::format("the wall-time limit of {:g} s was reached", max_wall_time_);
+        break;
+      }
+    }
     rod_.set_state(ida_->y().head(rod_.node_size()));
     if (!s.ok) {
       StepStatus failed = StepStatus::failed(
           rodlab::format("ida: IDASolve failed with {} at t = {:g} s{}", s.flag_name, s.t,
                          s.message.empty() ? "" : " (" + s.message + ")"));
-      failed.iterations = static_cast<int>(s.nonlinear_iterations);
+      failed.iterations = static_cast<int>(iterations);
+      failed.reached = s.t;
       return failed;
     }
     StepStatus ok;
-    ok.iterations = static_cast<int>(s.nonlinear_iterations);
+    ok.iterations = static_cast<int>(iterations);
     return ok;
   }
 
@@ -133,7 +171,8 @@ class IdaReference final : public Stepper {
     iW_ = rod_.work_index();
     IdaSolverOptions io;
     io.rtol = options.rtol;
-    io.max_steps = options.max_steps;
+    io.max_steps = options.max_steps > 0 ? std::min(options.max_steps, kIdaChunkSteps)
+                                         : kIdaChunkSteps;
     io.id = rod_.stabilised_id();
     // Algebraic components (constraint and actuator forces, multipliers): their Newton corrections
     // carry the rounding of the constraint rows amplified by 1/h (mu) and 1/h^2 (f) at IDA's small
@@ -204,6 +243,10 @@ class IdaReference final : public Stepper {
   }
 
   SemiDiscreteRod rod_;
+  long max_steps_ = 0;     ///< IdaOptions::max_steps
+  double omega_max_ = 0.0;  ///< the highest frequency of the semi-discrete rod [rad/s]
+  double max_wall_time_ = 0.0;
+  std::optional<std::chrono::steady_clock::time_point> deadline_;
   int dim_ = 0, iD_ = 0, iW_ = 0;
   std::unique_ptr<IdaSolver> ida_;
   bool stabilised_ = false;

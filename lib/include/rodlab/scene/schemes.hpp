@@ -60,14 +60,16 @@ inline constexpr std::array<SchemeInfo, kSchemeCount> kSchemeCatalogue{{
      "reference: Lie-group Hermite-Simpson (RKMK Lobatto IIIA) collocation, KINSOL + KLU"},
     {SchemeId::variational, "variational", Problem::dynamics, "1 (t) / 2 (s)", false, false,
      "explicit discrete variational Lie-group integrator (thesis Algorithm 1)"},
-    {SchemeId::implicit_midpoint, "implicit-midpoint", Problem::dynamics, "2 (t) / 1 (s)", true,
+    {SchemeId::implicit_midpoint, "implicit-midpoint", Problem::dynamics, "2 (t) / 2 (s)", true,
      false,
-     "implicit midpoint in time, explicit RKMK in space, single shooting (thesis Algorithm 2)"},
+     "implicit midpoint in time, single shooting in space on the staggered grid (thesis "
+     "Algorithm 2, explicit RKMK, first order in s: solver.grid euler)"},
     {SchemeId::implicit_midpoint_collocation, "implicit-midpoint-collocation", Problem::dynamics,
      "2 (t) / 2 (s)", true, false,
      "implicit midpoint in time, each step's BVP solved globally by KINSOL + KLU"},
-    {SchemeId::bdf_alpha, "bdf-alpha", Problem::dynamics, "2 (t) / 1 (s)", true, false,
-     "BDF-alpha in time with shooting in space (Till, Aloi & Rucker 2019)"},
+    {SchemeId::bdf_alpha, "bdf-alpha", Problem::dynamics, "2 (t) / 2 (s)", true, false,
+     "BDF-alpha in time (Till, Aloi & Rucker 2019), single shooting in space on the staggered "
+     "grid (first order in s: solver.grid euler)"},
     {SchemeId::ida, "ida", Problem::dynamics, "BDF 1-5 (t) / 2 (s)", true, true,
      "reference: method of lines in s, SUNDIALS IDA with KLU at tight tolerances"},
 }};

@@ -27,6 +27,9 @@ struct DynamicSolveOptions {
   double rtol = IdaOptions{}.rtol;  ///< `ida`: relative tolerance of the time integration
   double atol = IdaOptions{}.atol;  ///< `ida`: absolute tolerance (scaled per component, ida_reference.hpp)
   scene::Initial initial = scene::Initial::straight;
+  /// Wall-time guard [s]: the run stops, not converged, once it has taken longer (checked after
+  /// every step; inside `ida`'s long steps between chunks of internal steps); 0: none.
+  double max_wall_time = 0.0;
 };
 
 /// The scheme options a scene sets (solver.alpha, solver.grid) and its initial state

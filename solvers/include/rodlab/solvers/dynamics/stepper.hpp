@@ -4,6 +4,7 @@
 // the result file through the shared formulas of energy.hpp.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -56,6 +57,9 @@ struct StepStatus {
   bool ok = true;
   std::string reason;  ///< why the step failed (no convergence, instability)
   int iterations = 0;  ///< nonlinear iterations or shooting integrations spent on the step
+  /// A failed step that left the state inside the step (ida: where IDA stopped): that time;
+  /// NaN when the state is at the step's end or unchanged.
+  double reached = std::numeric_limits<double>::quiet_NaN();
   static StepStatus failed(std::string why) { return {false, std::move(why), 0}; }
 };
 

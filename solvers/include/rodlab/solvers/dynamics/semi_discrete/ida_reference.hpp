@@ -29,7 +29,11 @@
 // velocity and energy of the rod's gross motion).
 //
 // Consistent initial conditions: the run starts at rest from the given node poses, so y'0 =
-// f(0, y0) is computed directly (p' = q' = 0, eta' = M^-1 (...), no IDACalcIC).
+// f(0, y0) is computed directly (p' = q' = 0, eta' = M^-1 (...), no IDACalcIC); this holds on
+// stiff rods too (the system is an ODE; there is no algebraic part to make consistent).
+// Stiff rods: a release excites the rotation-shear mode sqrt(G A / rho I) (2 MHz on a 1 mm steel
+// wire) above the tolerances, which IDA resolves; the step budget scales with the interval and
+// that frequency (kIdaStepsPerRadian below), docs/dynamics.md "ida on stiff rods".
 // Muscles: their lengths Delta are algebraic unknowns after D and W, with the residual
 // (Delta - L(y)) / L (index 1; initial values the lengths of the initial poses; their Jacobian
 // row is dense over the poses and their column dense over the velocities, so the Newton matrix
@@ -49,8 +53,22 @@ namespace rodlab::solvers::dynamics {
 struct IdaOptions {
   int nodes = 20;
   double rtol = 1e-10, atol = 1e-10;  ///< IDA's tolerances (atol scaled per component, above)
-  int max_steps = 100000;             ///< internal IDA steps per step() call
+  /// Internal IDA steps per step() call; 0: the budget scales with the interval (below).
+  long max_steps = 0;
+  /// Wall-time guard [s] from the stepper's construction; 0: none. Checked between chunks of
+  /// kIdaChunkSteps internal steps, so a step() call overruns it by at most one chunk.
+  double max_wall_time = 0.0;
 };
+
+/// The step budget of a step() call over `interval` seconds at max_steps = 0:
+/// max(kIdaMinStepBudget, kIdaStepsPerRadian * interval * omega_max), with omega_max the highest
+/// frequency of the semi-discrete rod (time_step.hpp). Error control resolves an undamped mode
+/// at h omega of order 0.1-1 (measured on the steel guidewire of docs/dynamics.md: 2.5 steps
+/// per radian of its 2 MHz rotation-shear mode), so a stiff rod gets the steps its fastest mode
+/// needs while a stalled integration (h -> 0) still stops.
+inline constexpr long kIdaMinStepBudget = 100000;
+inline constexpr double kIdaStepsPerRadian = 20.0;
+inline constexpr long kIdaChunkSteps = 20000;
 
 /// Starts at rest from the node poses g0 (base first, options.nodes of them). step(t, dt)
 /// integrates to t + dt with the stop time there (a failed IDASolve is a failed StepStatus with

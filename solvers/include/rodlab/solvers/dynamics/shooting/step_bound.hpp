@@ -1,0 +1,47 @@
+#pragma once
+// The lower step bound of single shooting (`implicit-midpoint`, `bdf-alpha`), known before the
+// run starts (docs/dynamics.md "The lower step bound of single shooting").
+//
+// Each step solves a BVP in s whose linearisation about the straight rod, with x_dot = c x + h
+// (c = 2 / dt: the midpoint rule and bdf-alpha's midpoint start-up steps), has solutions growing
+// like e^(k s) along the rod:
+//   bending   k_b = (rho A c^2 / Kt_bend)^(1/4)       (w'''' = rho A c^2 w / Kt_bend)
+//   shear     k_s = c sqrt(rho A / Kt_shear)          axial  k_a = c sqrt(rho A / Kt_axial)
+//   torsion   k_t = c sqrt(rho J / Kt_torsion),       Kt = K + c V (Kelvin-Voigt, (3.10)),
+// so the tip residual amplifies an error at the base by e^kappa, kappa = L max(k). Newton on the
+// base wrench can then converge only while the rounding of the march, eps e^kappa, stays below
+// the tolerance: kappa <= ln(tol / eps) (13.0 at tol = 1e-10). Measured (implicit-midpoint,
+// N = 20, released under gravity, E from 1e6 to 2e11 Pa, viscosity 0 and 300 Pa s): on the
+// staggered grid every run with kappa <= 12.0 ran and every one with kappa >= 12.3 failed; the
+// thesis' Euler grid, whose explicit Euler march amplifies less than e^(k ds) per segment, ran up
+// to 14.8 and failed at 15.9; the bound is the same at N = 20..50 (the viscous cantilever: dt =
+// 2 ms runs, 1 ms fails at every N). Runs beyond the bound are refused before they start (exit
+// 2), naming the smallest step within it (necessary, not sufficient: a heavy, very soft rod also
+// fails at large steps, where one step's motion is too nonlinear for Newton from the last state)
+// and the schemes without the bound.
+#include <string>
+
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/shooting/shooting_stepper.hpp"
+
+namespace rodlab::solvers::dynamics {
+
+/// kappa = L max(k_b, k_s, k_a, k_t) at c = 2 / dt (the problem's own section: muscles' embedded
+/// stiffness is left out, which only lowers kappa).
+double single_shooting_exponent(const DynamicProblem& problem, double dt);
+
+/// The largest kappa a grid's single shooting reaches tol on: ln(tol / eps) plus the grid's
+/// measured allowance (the boundaries above: staggered 12.2, Euler 15.5 at tol = 1e-10).
+double single_shooting_exponent_bound(ShootingGrid grid, double tol);
+inline constexpr double kStaggeredGridAllowance = -0.8;
+inline constexpr double kEulerGridAllowance = 2.5;
+
+/// The smallest dt whose kappa is within the bound (bisection on the monotone kappa(dt)).
+double single_shooting_min_step(const DynamicProblem& problem, ShootingGrid grid, double tol);
+
+/// Empty when `scheme` (implicit-midpoint or bdf-alpha) can run at dt; else why not, naming the
+/// smallest step that fits and the schemes to use instead.
+std::string single_shooting_step_problem(const DynamicProblem& problem, std::string_view scheme,
+                                         ShootingGrid grid, double dt, double tol);
+
+}  // namespace rodlab::solvers::dynamics
