@@ -1,0 +1,76 @@
+#define BOOST_TEST_MODULE dynamics_step_bound
+#include <boost/test/unit_test.hpp>
+
+// Single shooting's lower step bound (solvers/dynamics/shooting/step_bound.hpp, #13 item 3):
+// (a) the exponent kappa against its closed form on the Table 2.1 rod (bending dominates);
+// (b) a run beyond the bound is refused before it starts (std::invalid_argument, exit 2 on the
+//     command line), naming the step it needs and the schemes to use; the Euler grid, whose
+//     bound is wider, runs the same case;
+// (c) a run 15 % above the smallest admitted step runs to its end (the bound is not
+//     conservative where single shooting works).
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "dynamics_support.hpp"
+#include "rodlab/solvers/dynamics/shooting/step_bound.hpp"
+
+namespace {
+
+using namespace rodlab;
+using namespace rodlab::testing::dynamics;
+using solvers::dynamics::DynamicProblem;
+using solvers::dynamics::ShootingGrid;
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(exponent_matches_its_closed_form) {
+  // Table 2.1 rod, viscosity 300 Pa s: bending with Kt = E I + c 3 alpha I dominates at dt = 1 ms
+  const auto P = DynamicProblem::from_scene(cantilever(300.0));
+  const double D = 0.01, L = 0.1, E = 1e6, rho = 1000, alpha = 300;
+  const double I = std::numbers::pi * std::pow(D, 4) / 64, A = std::numbers::pi * D * D / 4;
+  for (const double dt : {1e-3, 1e-2}) {
+    const double c = 2.0 / dt;
+    const double expected = L * std::pow(rho * A * c * c / (E * I + c * 3 * alpha * I), 0.25);
+    BOOST_TEST(solvers::dynamics::single_shooting_exponent(P, dt) == expected,
+               boost::test_tools::tolerance(1e-12));
+  }
+  BOOST_TEST(solvers::dynamics::single_shooting_exponent_bound(ShootingGrid::staggered, 1e-10) ==
+                 std::log(1e-10 / 2.220446049250313e-16) - 0.8,
+             boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(beyond_the_bound_is_refused_up_front) {
+  const auto s = cantilever(300.0);
+  auto o = options("implicit-midpoint", 20, 1e-3, 0.02, scene::Initial::straight);
+  o.grid = ShootingGrid::staggered;
+  try {
+    solvers::dynamics::solve_dynamic(s, o);
+    BOOST_FAIL("dt = 1 ms on the staggered grid was not refused");
+  } catch (const std::invalid_argument& e) {
+    const std::string why = e.what();
+    for (const char* part : {"lower step bound", "implicit-midpoint-collocation", "ida",
+                             "--grid euler", "dt >="})
+      BOOST_TEST(why.find(part) != std::string::npos, why);
+  }
+  o.grid = ShootingGrid::euler;  // its bound is wider: the same run converges
+  const auto r = solvers::dynamics::solve_dynamic(s, o);
+  BOOST_TEST(r.converged, r.reason);
+}
+
+BOOST_AUTO_TEST_CASE(just_within_the_bound_runs) {
+  const auto s = cantilever(300.0);
+  const auto P = DynamicProblem::from_scene(s);
+  for (const auto grid : {ShootingGrid::staggered, ShootingGrid::euler}) {
+    const double dt = 1.15 * solvers::dynamics::single_shooting_min_step(P, grid, 1e-10);
+    auto o = options("implicit-midpoint", 20, dt, 20 * dt, scene::Initial::straight);
+    o.grid = grid;
+    const auto r = solvers::dynamics::solve_dynamic(s, o);
+    BOOST_TEST_MESSAGE("grid " << solvers::dynamics::shooting_grid_name(grid) << ": dt = " << dt
+                               << " s, kappa = "
+                               << solvers::dynamics::single_shooting_exponent(P, dt) << ", "
+                               << (r.converged ? "converged" : r.reason));
+    BOOST_TEST(r.converged, r.reason);
+  }
+}
