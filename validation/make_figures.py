@@ -171,6 +171,10 @@ def draw(plt, np, table, spec):
     kind = spec.get("kind", "line")
     fig, ax = plt.subplots()
     if kind == "map":
+        select = spec.get("select") or ""
+        if select and spec.get("series"):  # only the rows whose series value starts with it
+            keep = [i for i, k in enumerate(table[spec["series"]]) if str(k).startswith(select)]
+            table = {c: [v[i] for i in keep] for c, v in table.items()}
         x, z = np.array(table[spec["x"]]), np.array(table[spec["y"][0]])
         if spec.get("series"):
             keys = []
@@ -179,7 +183,7 @@ def draw(plt, np, table, spec):
                     keys.append(k)
             y = np.array([keys.index(k) for k in table[spec["series"]]], dtype=float)
             ax.set_yticks(range(len(keys)))
-            ax.set_yticklabels([str(k) for k in keys], fontsize=7)
+            ax.set_yticklabels([str(k)[len(select):] for k in keys], fontsize=7)
             ax.set_ylim(-0.5, len(keys) - 0.5)
         else:
             y = np.array(table[spec["y"][1]])

@@ -103,6 +103,8 @@ struct ValidationContext {
   std::filesystem::path scenes_dir;  ///< the example scenes (*.yaml)
   bool full = false;                 ///< --full: also the slow checks
   DataSink* sink = nullptr;          ///< where emit() goes; nullptr drops the data
+  /// The rodlab executable the extremes family runs as child processes; empty: this program.
+  std::filesystem::path program;
 
   /// Records a data set (and its figures) for the report.
   void emit(DataSet data) const;
@@ -150,5 +152,10 @@ std::vector<Check> dynamics_checks(const ValidationContext& context);
 /// against an independent reference (timings are reported, never gated), the stability map of
 /// the explicit scheme and the implicit schemes' step scans.
 std::vector<Check> study_checks(const ValidationContext& context);
+
+/// extremes_checks.cpp: every scheme at the extremes of E, N and dt, run as child processes:
+/// exit 0 only with finite results, otherwise exit 1 with a reason or exit 2 up front; no crash,
+/// no hang past the budget; the map of what runs.
+std::vector<Check> extremes_checks(const ValidationContext& context);
 
 }  // namespace rodlab::validation
