@@ -89,7 +89,6 @@ std::unique_ptr<Stepper> ida(const DynamicProblem& problem, const DynamicSolveOp
   options.nodes = o.nodes;
   options.rtol = o.rtol;
   options.atol = o.atol;
-  options.max_wall_time = o.max_wall_time;
   return dynamics::make_ida(problem, options, initial);
 }
 

@@ -9,8 +9,9 @@ namespace rodlab::cli {
 namespace {
 
 constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
-constexpr std::array<OptionSpec, 6> kOptions{kSchemeOption, kNodesOption, kTolOption,
-                                             kTimeOption, kOutFileOption, kSetOption};
+constexpr std::array<OptionSpec, 7> kOptions{kSchemeOption,  kNodesOption, kTolOption,
+                                             kTimeOption,    kOutFileOption, kSetOption,
+                                             kMaxWallTimeOption};
 
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);

@@ -36,10 +36,7 @@ const OptionSpec kRtolOption{"--rtol", "X", kRtolHelp};
 const OptionSpec kAtolOption{"--atol", "X", kAtolHelp};
 const OptionSpec kAlphaOption{"--alpha", "X", kAlphaHelp};
 const OptionSpec kGridOption{"--grid", "euler|staggered", kGridHelp};
-const OptionSpec kMaxWallTimeOption{
-    "--max-wall-time", "S",
-    "stop the run (exit 1, the result so far written) once it has taken S seconds, S > 0; "
-    "default: no limit"};
+
 
 std::optional<solvers::SchemeInfo> fitting_scheme(std::string_view name, Problem problem,
                                                   std::string_view command, std::string& why) {
@@ -187,6 +184,7 @@ StaticRun resolve_static_run(const SolveOptions& options, const scene::Scene& sc
   run.solve.tol = options.tol.value_or(scene.solver.tol);
   run.solve.max_iterations = scene.solver.max_iterations;
   run.solve.time = options.time.value_or(0.0);
+  run.solve.max_wall_time = options.max_wall_time.value_or(0.0);
   return run;
 }
 

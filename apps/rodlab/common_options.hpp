@@ -40,7 +40,11 @@ extern const OptionSpec kRtolOption;   ///< ida: rtol
 extern const OptionSpec kAtolOption;   ///< ida: atol
 extern const OptionSpec kAlphaOption;  ///< bdf-alpha: alpha
 extern const OptionSpec kGridOption;   ///< implicit-midpoint, bdf-alpha: the march's grid
-extern const OptionSpec kMaxWallTimeOption;  ///< dynamic: the wall-time guard
+
+inline constexpr OptionSpec kMaxWallTimeOption{
+    "--max-wall-time", "S",
+    "stop the solve (exit 1, the result so far written, the reason naming the limit) once it has "
+    "taken S seconds, S > 0; default: no limit"};
 inline constexpr OptionSpec kOutputEveryOption{
     "--output-every", "K", "record every K-th step, integer >= 1; default: dynamics.output_every"};
 

@@ -6,6 +6,7 @@
 #include <Eigen/QR>
 
 #include "rodlab/check.hpp"
+#include "rodlab/solvers/common/deadline.hpp"
 
 namespace rodlab::solvers {
 namespace {
@@ -69,6 +70,7 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
   bool J_is_fd = false; // J is a finite-difference Jacobian at the current x
   VectorXd x_new(out.x.size()), F_new(out.F.size());
   for (out.iterations = 0; out.iterations < options.max_iterations; ++out.iterations) {
+    check_deadline();  // the run's wall-time guard (deadline.hpp)
     if (out.F.lpNorm<Eigen::Infinity>() <= options.tol) return finish(true, "");
     if (!have_J) {
       Evaluator& je = separate_jacobian ? jacobian_eval : eval;

@@ -16,6 +16,8 @@
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "rodlab/solvers/common/deadline.hpp"
 #include <Eigen/SparseCore>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -87,6 +89,7 @@ inline Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
 template <class Recoverable, class Body>
 int guarded(std::string& message, std::exception_ptr& error, Body&& body) {
   try {
+    check_deadline();  // the run's wall-time guard (deadline.hpp): unrecoverable, rethrown
     return body();
   } catch (const Recoverable& e) {
     message = e.what();

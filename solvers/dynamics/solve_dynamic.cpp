@@ -9,7 +9,9 @@
 
 #include "rodlab/check.hpp"
 #include "rodlab/rod/energies.hpp"
+#include "rodlab/solvers/common/deadline.hpp"
 #include "rodlab/solvers/dynamics/shooting/step_bound.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/registry.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
@@ -120,6 +122,7 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   }
   out.dt = dt;
   const auto start = std::chrono::steady_clock::now();
+  const DeadlineScope deadline(options.max_wall_time);
   std::string failure;
   const RestState initial = initial_state(scene, problem, options, failure);
   const std::unique_ptr<Stepper> stepper =
@@ -150,7 +153,12 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   double t = 0.0;
   while (failure.empty() && done < steps) {
     const double t1 = done + 1 == steps ? options.t_end : static_cast<double>(done + 1) * dt;
-    const StepStatus status = stepper->step(t, dt);
+    StepStatus status;
+    try {
+      status = stepper->step(t, dt);
+    } catch (const WallTimeExceeded& e) {  // inside the step (common/deadline.hpp)
+      status = StepStatus::failed(rodlab::format("{} in the step from t = {:g} s", e.what(), t));
+    }
     ++done;
     t = t1;
     if (!status.ok) {
@@ -160,7 +168,7 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
     }
     if (options.max_wall_time > 0.0 &&
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
-            options.max_wall_time && done < steps) {
+            options.max_wall_time && done < steps) {  // between steps
       failure = rodlab::format("the wall-time limit of {:g} s was reached at t = {:g} s",
                                options.max_wall_time, t);
       record(t);
@@ -169,6 +177,16 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
     if (done % options.output_every == 0 || done == steps) record(t);
   }
   out.steps = done;
+  if (!failure.empty() && scheme.id == SchemeId::variational) {
+    // the explicit scheme above its stability limit: say so, and what to use
+    const double limit = variational_stable_step(problem, options.nodes);
+    if (dt > limit)
+      failure += rodlab::format(
+          "; dt = {:g} s is {:.3g} times variational's stability limit {:.3g} s (time_step.hpp): "
+          "use dt: auto, or an implicit scheme (implicit-midpoint, "
+          "implicit-midpoint-collocation, ida)",
+          dt, dt / limit, limit);
+  }
   out.converged = failure.empty();
   out.reason = failure;
   out.final_centerline = stepper->centerline();

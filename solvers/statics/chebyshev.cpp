@@ -15,6 +15,7 @@
 
 #include "rodlab/check.hpp"
 #include "rodlab/solvers/common/chebyshev_operators.hpp"
+#include "rodlab/solvers/common/deadline.hpp"
 #include "rodlab/solvers/statics/chebyshev_newton_matrix.hpp"
 #include "rodlab/solvers/statics/continuation.hpp"
 #include "rodlab/solvers/statics/result_builder.hpp"
@@ -311,6 +312,7 @@ class Collocation {
   /// the path lengths by Clenshaw-Curtis quadrature on every element's nodes: spectral, as the
   /// collocation (the path length rate |u| is smooth inside each element).
   bool residual(const VectorXd& x, VectorXd& F) {
+    check_deadline();  // the run's wall-time guard (common/deadline.hpp)
     set_extras(x);
     if (!update_charts(x)) return false;
     F.resize(size());

@@ -1,9 +1,7 @@
 #include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -28,14 +26,8 @@ class IdaReference final : public Stepper {
     if (!(options.rtol > 0.0) || !(options.atol > 0.0))
       throw std::invalid_argument("ida: rtol and atol must be > 0");
     if (options.max_steps < 0) throw std::invalid_argument("ida: max_steps must be >= 0");
-    if (!(options.max_wall_time >= 0.0)) throw std::invalid_argument("ida: max_wall_time must be >= 0");
     max_steps_ = options.max_steps;
     omega_max_ = variational_max_frequency(problem, options.nodes);
-    if (options.max_wall_time > 0.0)
-      deadline_ = std::chrono::steady_clock::now() +
-                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                      std::chrono::duration<double>(options.max_wall_time));
-    max_wall_time_ = options.max_wall_time;
     if (rod_.has_position_constraints()) {
       init_stabilised(options, g0);
       return;
@@ -88,8 +80,8 @@ class IdaReference final : public Stepper {
     return std::max(kIdaMinStepBudget, static_cast<long>(std::min(scaled, 1e15)));
   }
 
-  /// IDASolve to tout in chunks of kIdaChunkSteps internal steps, within the step budget and the
-  /// wall-time guard; the state is unpacked for the reports.
+  /// IDASolve to tout in chunks of kIdaChunkSteps internal steps, within the step budget; the
+  /// state is unpacked for the reports.
   StepStatus advance(double tout) {
     const long budget = step_budget(tout);
     long steps = 0, iterations = 0;
@@ -102,10 +94,6 @@ class IdaReference final : public Stepper {
       if (steps >= budget) {
         s.message = rodlab::format("{} internal steps (the budget of this step) taken before "
                                    "reaching t = {:g} s", steps, tout);
-        break;
-      }
-      if (deadline_ && std::chrono::steady_clock::now() > *deadline_) {
-        s.message = rodlab::format("the wall-time limit of {:g} s was reached", max_wall_time_);
         break;
       }
     }
@@ -245,8 +233,6 @@ class IdaReference final : public Stepper {
   SemiDiscreteRod rod_;
   long max_steps_ = 0;     ///< IdaOptions::max_steps
   double omega_max_ = 0.0;  ///< the highest frequency of the semi-discrete rod [rad/s]
-  double max_wall_time_ = 0.0;
-  std::optional<std::chrono::steady_clock::time_point> deadline_;
   int dim_ = 0, iD_ = 0, iW_ = 0;
   std::unique_ptr<IdaSolver> ida_;
   bool stabilised_ = false;

@@ -15,6 +15,7 @@
 #include <Eigen/LU>
 
 #include "rodlab/check.hpp"
+#include "rodlab/solvers/common/deadline.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 
 
@@ -69,6 +70,7 @@ class ShootingNewton {
     bool fresh = false;
     auto norm = [](const Vec& v) { return v.template lpNorm<Eigen::Infinity>(); };
     while (!(norm(r) <= tol)) {
+      check_deadline();  // the run's wall-time guard (common/deadline.hpp)
       if (out.shots >= max_shots || !r.allFinite()) {
         out.failure =
             rodlab::format("single shooting did not converge (tip residual {:g})", norm(r));

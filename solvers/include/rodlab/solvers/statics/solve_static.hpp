@@ -14,6 +14,9 @@ struct StaticSolveOptions {
   double tol = 1e-10;
   int max_iterations = 50;
   double time = 0.0;  ///< scene overload: actuator and tip-wrench schedules are evaluated here
+  /// Wall-time guard [s] (common/deadline.hpp): the solve stops, not converged, once it has
+  /// taken longer; 0: none.
+  double max_wall_time = 0.0;
 };
 
 /// Solves and times one static equilibrium. Throws std::invalid_argument for an unknown or not

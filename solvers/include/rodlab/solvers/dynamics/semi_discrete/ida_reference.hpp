@@ -53,11 +53,9 @@ namespace rodlab::solvers::dynamics {
 struct IdaOptions {
   int nodes = 20;
   double rtol = 1e-10, atol = 1e-10;  ///< IDA's tolerances (atol scaled per component, above)
-  /// Internal IDA steps per step() call; 0: the budget scales with the interval (below).
+  /// Internal IDA steps per step() call; 0: the budget scales with the interval (below). The
+  /// run's wall-time guard (common/deadline.hpp) is checked in every residual evaluation.
   long max_steps = 0;
-  /// Wall-time guard [s] from the stepper's construction; 0: none. Checked between chunks of
-  /// kIdaChunkSteps internal steps, so a step() call overruns it by at most one chunk.
-  double max_wall_time = 0.0;
 };
 
 /// The step budget of a step() call over `interval` seconds at max_steps = 0:
@@ -68,6 +66,8 @@ struct IdaOptions {
 /// needs while a stalled integration (h -> 0) still stops.
 inline constexpr long kIdaMinStepBudget = 100000;
 inline constexpr double kIdaStepsPerRadian = 20.0;
+/// IDASolve is called for at most this many internal steps at a time (the budget is counted
+/// over the calls).
 inline constexpr long kIdaChunkSteps = 20000;
 
 /// Starts at rest from the node poses g0 (base first, options.nodes of them). step(t, dt)
