@@ -13,3 +13,13 @@ if(RODLAB_SANITIZE)
     -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g)
   target_link_options(rodlab_warnings INTERFACE -fsanitize=address,undefined)
 endif()
+
+# -DRODLAB_FUZZ=ON (clang): every rodlab target instrumented for libFuzzer's coverage and built
+# with AddressSanitizer + UndefinedBehaviorSanitizer (undefined behaviour fatal); the fuzz
+# targets themselves link -fsanitize=fuzzer (fuzz/CMakeLists.txt).
+if(RODLAB_FUZZ)
+  target_compile_options(rodlab_warnings INTERFACE
+    -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+    -fno-omit-frame-pointer -g)
+  target_link_options(rodlab_warnings INTERFACE -fsanitize=address,undefined)
+endif()
