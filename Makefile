@@ -2,8 +2,9 @@
 # configures and builds in Release), then does one thing.
 BUILD ?= build
 JOBS  ?= $(shell nproc)
+FUZZ_RUNS ?= 1000000
 
-.PHONY: all bootstrap test validate bench clean
+.PHONY: all bootstrap test validate bench sanitize fuzz clean
 
 all: bootstrap
 
@@ -19,5 +20,14 @@ validate: bootstrap
 bench: bootstrap
 	@for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b --benchmark_min_time=0.2 --benchmark_repetitions=5 --benchmark_report_aggregates_only=true; done
 
+# The unit suite under ASan + UBSan in build-asan/ (scripts/sanitize.sh).
+sanitize: bootstrap
+	./scripts/sanitize.sh
+
+# libFuzzer on the scene loader and the --set overrides, FUZZ_RUNS inputs each, in build-fuzz/
+# (scripts/fuzz.sh; needs clang).
+fuzz: bootstrap
+	./scripts/fuzz.sh $(FUZZ_RUNS)
+
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) build-asan build-fuzz out

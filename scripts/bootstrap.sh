@@ -18,6 +18,7 @@ packages=(
   nlohmann-json3-dev               # result files
   python3-matplotlib python3-numpy # figures of the validation report (validation/make_figures.py)
   libopenmpi-dev openmpi-bin       # MPI for rodlab study across ranks (optional at build time)
+  clang libclang-rt-dev            # libFuzzer for scripts/fuzz.sh (CI's short fuzz run; dev only)
 )
 
 missing=()

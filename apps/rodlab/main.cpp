@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rodlab/io/atomic_file.hpp"
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/io/text_format.hpp"
 
@@ -52,6 +53,9 @@ int run_command(const Command& command, std::span<const std::string> args,
     std::cerr << "Run 'rodlab " << command.name << " --help' for the options.\n";
   } catch (const io::SceneError& e) {
     for (const auto& d : e.diagnostics()) std::cerr << d.to_string() << '\n';
+  } catch (const io::WriteError& e) {  // disk full, directory removed: a failure, not bad input
+    std::cerr << prefix << "error: " << e.what() << '\n';
+    return kFailed;
   } catch (const std::invalid_argument& e) {  // bad values the scene checks did not catch
     std::cerr << prefix << "error: " << e.what() << '\n';
   } catch (const std::logic_error& e) {  // a broken invariant: a bug, not the user's input

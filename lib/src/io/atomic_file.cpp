@@ -14,7 +14,21 @@ namespace rodlab::io {
 namespace {
 
 [[noreturn]] void throw_errno(int error, const std::string& what) {
-  throw std::system_error(error, std::generic_category(), what);
+  throw WriteError(error, std::generic_category(), what);
+}
+
+std::filesystem::path directory_of(const std::filesystem::path& target) {
+  return target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+}
+
+/// "cannot write PATH", and the directory when it is gone (removed while rodlab ran, say):
+/// ENOENT alone would not say which part of the path is missing.
+std::string cannot_write(const std::filesystem::path& target, int error) {
+  std::string what = "cannot write " + target.string();
+  std::error_code ec;
+  if (error == ENOENT && !std::filesystem::is_directory(directory_of(target), ec))
+    what += " (the directory " + directory_of(target).string() + " does not exist)";
+  return what;
 }
 
 /// Closes and removes the temporary file unless released (after a successful rename).
@@ -50,8 +64,7 @@ class TempFile {
 TempFile create_temp_next_to(const std::filesystem::path& target) {
   static std::atomic<unsigned long> counter{0};
   std::random_device device;
-  const std::filesystem::path dir =
-      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  const std::filesystem::path dir = directory_of(target);
   std::string stem = ".";  // (appending, not "." + ...: GCC 12 -Wrestrict false positive)
   stem += target.filename().string();
   stem += ".tmp-";
@@ -61,7 +74,7 @@ TempFile create_temp_next_to(const std::filesystem::path& target) {
         dir / (stem + "-" + std::to_string(counter++) + "-" + std::to_string(device()));
     const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) return TempFile(fd, candidate);
-    if (errno != EEXIST) throw_errno(errno, "cannot write " + target.string());
+    if (const int error = errno; error != EEXIST) throw_errno(error, cannot_write(target, error));
   }
   throw_errno(EEXIST, "cannot write " + target.string() + ": no unique temporary name");
 }
@@ -79,9 +92,7 @@ void write_all(int fd, std::string_view content, const std::filesystem::path& ta
 
 /// Makes the rename itself durable; failure here does not undo a completed write.
 void sync_directory(const std::filesystem::path& target) {
-  const std::filesystem::path dir =
-      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  const int fd = ::open(directory_of(target).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fd < 0) return;
   ::fsync(fd);
   ::close(fd);
@@ -97,8 +108,10 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
   if (::fsync(temp.fd()) != 0) throw_errno(errno, "cannot write " + path.string());
   if (const int error = temp.close(); error != 0)
     throw_errno(error, "cannot write " + path.string());
-  if (::rename(temp.path().c_str(), path.c_str()) != 0)
-    throw_errno(errno, "cannot write " + path.string());
+  if (::rename(temp.path().c_str(), path.c_str()) != 0) {
+    const int error = errno;
+    throw_errno(error, cannot_write(path, error));
+  }
   temp.release();
   sync_directory(path);
 }
