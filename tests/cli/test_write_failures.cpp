@@ -82,7 +82,8 @@ BOOST_AUTO_TEST_CASE(a_full_disk_fails_with_exit_1_naming_the_file, *utf::timeou
 
 namespace {
 
-/// Starts `rodlab dynamic scene.yaml --out out/result.json` in `work`, removes out/ after
+/// Starts `rodlab dynamic scene.yaml --out out/result.json --max-wall-time 3` in `work`, removes
+/// out/ after
 /// `delay`, and returns the exit status (-1 if killed by a signal) and stderr.
 Run run_and_remove_the_directory(const Sandbox& box, std::chrono::milliseconds delay) {
   fs::create_directories(box.work / "out");
@@ -93,7 +94,7 @@ Run run_and_remove_the_directory(const Sandbox& box, std::chrono::milliseconds d
     std::freopen("/dev/null", "w", stdout);
     std::freopen(err.c_str(), "w", stderr);
     ::execl(RODLAB_BINARY, RODLAB_BINARY, "dynamic", "scene.yaml", "--out", "out/result.json",
-            static_cast<char*>(nullptr));
+            "--max-wall-time", "3", static_cast<char*>(nullptr));
     ::_exit(127);
   }
   std::this_thread::sleep_for(delay);
@@ -110,10 +111,12 @@ Run run_and_remove_the_directory(const Sandbox& box, std::chrono::milliseconds d
 
 BOOST_AUTO_TEST_CASE(a_removed_output_directory_is_named, *utf::timeout(60)) {
   Sandbox box("dir-gone");
-  box.write("scene.yaml", scene(100000, 100));  // about a second; the directory goes early
-  // The options (out/ exists) are checked in milliseconds and the run takes about a second, so
-  // out/ goes mid-run; on a loaded machine the start may take longer than the delay (then the
-  // option check names out/ and exits 2): try again with twice the delay.
+  box.write("scene.yaml", scene(100000000, 1000));  // far longer than the test
+  // The options (out/ exists) are checked in milliseconds and the run is stopped by its
+  // wall-time guard after 3 s (then writes its result), so out/ always goes mid-run, on an idle
+  // machine as on a loaded one (a run that finished before the delay made this test timing-
+  // dependent); on a loaded machine the start may take longer than the delay (then the option
+  // check names out/ and exits 2): try again with twice the delay.
   std::chrono::milliseconds delay(300);
   Run r = run_and_remove_the_directory(box, delay);
   for (int retry = 0; retry < 3 && r.status == 2 && contains(r.err, "--out: directory"); ++retry)
