@@ -17,6 +17,11 @@ namespace {
 using Vector = Eigen::VectorXd;
 using ConstRef = Eigen::Ref<const Vector>;
 
+/// Internal steps per IDASolve call: a chunk, or the whole budget when that is smaller.
+long chunk_steps(const IdaOptions& options) {
+  return options.max_steps > 0 ? std::min(options.max_steps, kIdaChunkSteps) : kIdaChunkSteps;
+}
+
 class IdaReference final : public Stepper {
  public:
   IdaReference(const DynamicProblem& problem, const IdaOptions& options, std::span<const SE3> g0)
@@ -40,8 +45,7 @@ class IdaReference final : public Stepper {
     IdaSolverOptions io;
     io.rtol = options.rtol;
     io.atol = options.atol * rod_.tolerance_scale();
-    io.max_steps = options.max_steps > 0 ? std::min(options.max_steps, kIdaChunkSteps)
-                                         : kIdaChunkSteps;
+    io.max_steps = chunk_steps(options);
 
     ida_ = std::make_unique<IdaSolver>(
         rod_.pattern(true),
@@ -159,8 +163,7 @@ class IdaReference final : public Stepper {
     iW_ = rod_.work_index();
     IdaSolverOptions io;
     io.rtol = options.rtol;
-    io.max_steps = options.max_steps > 0 ? std::min(options.max_steps, kIdaChunkSteps)
-                                         : kIdaChunkSteps;
+    io.max_steps = chunk_steps(options);
     io.id = rod_.stabilised_id();
     // Algebraic components (constraint and actuator forces, multipliers): their Newton corrections
     // carry the rounding of the constraint rows amplified by 1/h (mu) and 1/h^2 (f) at IDA's small
