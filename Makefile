@@ -25,8 +25,9 @@ sanitize: bootstrap
 	./scripts/sanitize.sh
 
 # libFuzzer on the scene loader and the --set overrides, FUZZ_RUNS inputs each, in build-fuzz/
-# (scripts/fuzz.sh; needs clang).
-fuzz: bootstrap
+# (scripts/fuzz.sh; installs clang and libclang-rt-dev when missing).
+fuzz:
+	@RODLAB_BUILD_DIR=$(BUILD) RODLAB_EXTRA_PACKAGES="clang libclang-rt-dev" ./scripts/bootstrap.sh
 	./scripts/fuzz.sh $(FUZZ_RUNS)
 
 clean:

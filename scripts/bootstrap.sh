@@ -18,8 +18,10 @@ packages=(
   nlohmann-json3-dev               # result files
   python3-matplotlib python3-numpy # figures of the validation report (validation/make_figures.py)
   libopenmpi-dev openmpi-bin       # MPI for rodlab study across ranks (optional at build time)
-  clang libclang-rt-dev            # libFuzzer for scripts/fuzz.sh (CI's short fuzz run; dev only)
 )
+# Extra packages for one target only, e.g. `make fuzz` adds clang and libclang-rt-dev.
+read -r -a extra <<< "${RODLAB_EXTRA_PACKAGES:-}"
+packages+=("${extra[@]}")
 
 missing=()
 if command -v dpkg-query >/dev/null 2>&1; then
