@@ -44,6 +44,11 @@ if(NOT TARGET rodlab::klu)
   target_link_libraries(rodlab::klu INTERFACE ${KLU_LIBRARY})
 endif()
 
+# Bounded nonlinear least squares for control (inverse statics, NLSQ-MPC; solvers/control/):
+# trust-region LM with parameter bounds and user Jacobians, which GSL's multifit lacks.
+find_package(Ceres 2 QUIET)
+rodlab_require_found(Ceres_FOUND "Ceres Solver 2 (bounded nonlinear least squares)" libceres-dev)
+
 find_package(Threads REQUIRED)
 
 if(RODLAB_BUILD_TESTS)

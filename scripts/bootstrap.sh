@@ -12,6 +12,7 @@ packages=(
   libsundials-dev                  # KINSOL, IDA (built with KLU)
   libsuitesparse-dev               # KLU sparse LU
   libgsl-dev                       # special functions, quadrature
+  libceres-dev                     # bounded nonlinear least squares (control)
   libboost-test-dev                # unit tests
   libyaml-cpp-dev                  # scene files
   libbenchmark-dev                 # benchmarks
