@@ -134,7 +134,7 @@ DynamicProblem::Forces DynamicProblem::forces(double t, const double* unknowns,
         F[k] = unknowns[e++];
         break;
       case ActuatorDrive::muscle:
-        F[k] = a.law->force(a.input.at(t), unknowns[e], rest[e]);  // (2.63) with Delta (2.66)
+        F[k] = a.law->force(a.input_at(t), unknowns[e], rest[e]);  // (2.63) with Delta (2.66)
         ++e;
         break;
     }

@@ -28,8 +28,17 @@ constexpr double kUnstableFactor = 1e3;
 /// for `initial: straight`: rounding of base exp(L xi*) against the scene's numbers.
 constexpr double kClampRestTolerance = 1e-9;
 
-/// The initial state at rest: the reference configuration, or the static equilibrium under the
-/// t = 0 loads. A clamped tip must hold the reference configuration's tip to start from it.
+/// An energy scale the run can legitimately reach: the strain energy of a quarter-circle bend,
+/// plus what gravity and the inputs have exchanged so far, plus the initial energy.
+double energy_budget(const DynamicProblem& problem, const Energy& e0, const Energy& e) {
+  const auto& K = problem.model().K_diag();
+  const double L = problem.length();
+  const double bend = 0.5 * std::min(K[0], K[1]) * std::pow(0.5 * std::numbers::pi / L, 2) * L;
+  return bend + std::abs(e.gravity) + std::abs(e.work_in) + std::abs(e0.mechanical());
+}
+
+}  // namespace
+
 RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem,
                         const DynamicSolveOptions& options, std::string& failure) {
   const int n = options.nodes;
@@ -72,17 +81,6 @@ RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem
   state.equilibrium = true;
   return state;
 }
-
-/// An energy scale the run can legitimately reach: the strain energy of a quarter-circle bend,
-/// plus what gravity and the inputs have exchanged so far, plus the initial energy.
-double energy_budget(const DynamicProblem& problem, const Energy& e0, const Energy& e) {
-  const auto& K = problem.model().K_diag();
-  const double L = problem.length();
-  const double bend = 0.5 * std::min(K[0], K[1]) * std::pow(0.5 * std::numbers::pi / L, 2) * L;
-  return bend + std::abs(e.gravity) + std::abs(e.work_in) + std::abs(e0.mechanical());
-}
-
-}  // namespace
 
 void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options) {
   options.alpha = scene.solver.alpha.value_or(options.alpha);

@@ -11,9 +11,11 @@
 
 #include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
+#include "../../common/cloned.hpp"
+#include "../staggered_paths.hpp"
+#include "../tangent_state.hpp"
 #include "embedded_reference.hpp"
 #include "shooting_newton.hpp"
-#include "../staggered_paths.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {
@@ -36,7 +38,8 @@ class StaggeredShootingStepper final : public Stepper {
   StaggeredShootingStepper(const DynamicProblem& problem, const ShootingOptions& options,
                            const RestState& initial, std::unique_ptr<TimeRule> rule)
       : P_(problem), opt_(options), rule_(std::move(rule)), n_(options.nodes),
-        ds_(problem.length() / (n_ - 1)), name_(std::string(rule_->name()) + " (grid staggered)") {
+        ds_(problem.length() / (n_ - 1)), name_(std::string(rule_->name()) + " (grid staggered)"),
+        tangent_(n_, problem.model().xi_star(), problem.is_kirchhoff()) {
     RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", name_);
     RODLAB_THROW_UNLESS(
         static_cast<int>(initial.g.size()) == n_ && static_cast<int>(initial.xi.size()) == n_,
@@ -144,6 +147,44 @@ class StaggeredShootingStepper final : public Stepper {
     std::vector<ActuatorReading> out(m_);
     for (int e = 0; e < m_; ++e) out[e] = {which_[e], paths_.length(e, xi_), F_[which_[e]]};
     return out;
+  }
+
+  std::unique_ptr<Stepper> clone() const override {
+    return std::make_unique<StaggeredShootingStepper>(*this);
+  }
+
+  // Every member a step changes, scratch included (the test of bit-for-bit repetition,
+  // tests/control/test_plant.cpp, catches one left out); the rest is fixed at construction.
+  void assign_state(const Stepper& other) override {
+    const auto& o = dynamic_cast<const StaggeredShootingStepper&>(other);
+    RODLAB_THROW_UNLESS(&o.P_ == &P_ && o.n_ == n_, "{}: assign_state from another problem or grid",
+                        name_);
+    rule_ = o.rule_;
+    Kt_ = o.Kt_;
+    Kt_matrix_ = o.Kt_matrix_;
+    t_u_ = o.t_u_, t_end_ = o.t_end_, c_ = o.c_, end_ = o.end_;
+    dissipated_start_ = o.dissipated_start_, work_start_ = o.work_start_;
+    dissipated_u_ = o.dissipated_u_, work_u_ = o.work_u_;
+    xi_ = o.xi_, eta_ = o.eta_, xi_u_ = o.xi_u_, eta_u_ = o.eta_u_;
+    xi_hist_ = o.xi_hist_, eta_hist_ = o.eta_hist_, xi_ref_ = o.xi_ref_;
+    g_ = o.g_;
+    inner_failed_ = o.inner_failed_;
+    F_ = o.F_;
+    plain_ = o.plain_;
+    extended_ = o.extended_;
+    unknown_ = o.unknown_;
+    xi_end_ = o.xi_end_;
+    Kt_full_ = o.Kt_full_, Kt_accel_ = o.Kt_accel_;
+    steps_ = o.steps_;
+    ledger_ = o.ledger_;
+  }
+
+  int tangent_size() const override { return tangent_.size(); }
+  void read_tangent(std::span<double> x) const override { tangent_.read(xi_, eta_, x); }
+  // bdf-alpha: the rule's history (x_(i-1), x_dot_i) is not moved (docs/control.md).
+  void add_tangent(std::span<const double> dx) override {
+    tangent_.add(dx, xi_, eta_);
+    for (int j = 0; j + 1 < n_; ++j) g_[j + 1] = g_[j] * SE3::exp(ds_ * xi_[j]);
   }
 
  private:
@@ -409,10 +450,11 @@ class StaggeredShootingStepper final : public Stepper {
 
   const DynamicProblem& P_;
   ShootingOptions opt_;
-  std::unique_ptr<TimeRule> rule_;
+  Cloned<TimeRule> rule_;
   int n_;
   double ds_;
   std::string name_;
+  StaggeredTangent tangent_;
   Vector6 scale_, Kt_;
   Matrix6 Kt_matrix_;
   double t_u_ = 0.0, t_end_ = 0.0, c_ = 0.0;

@@ -30,6 +30,8 @@ class MidpointRule final : public TimeRule {
   }
   double end_coefficient() const override { return 2.0; }
   double ledger_start_weight() const override { return 0.0; }
+  std::unique_ptr<TimeRule> clone() const override { return std::make_unique<MidpointRule>(); }
+  void assign(const TimeRule&) override {}  // no history
 };
 
 class BdfAlphaRule final : public TimeRule {
@@ -100,6 +102,10 @@ class BdfAlphaRule final : public TimeRule {
   double end_coefficient() const override { return steps_ < kStartSteps ? 2.0 : 1.0; }
   // trapezoid once the power at the start of the step is BDF-alpha's own (at t, not t - dt/2)
   double ledger_start_weight() const override { return steps_ > kStartSteps ? 0.5 : 0.0; }
+  std::unique_ptr<TimeRule> clone() const override { return std::make_unique<BdfAlphaRule>(*this); }
+  void assign(const TimeRule& other) override {
+    *this = dynamic_cast<const BdfAlphaRule&>(other);  // equal sizes: the vectors keep their storage
+  }
 
  private:
   static constexpr int kStartSteps = 2;

@@ -16,6 +16,7 @@
 #include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
 #include "rodlab/solvers/dynamics/variational/variational.hpp"
+#include "../tangent_state.hpp"
 #include "variational_actuators.hpp"
 
 namespace rodlab::solvers::dynamics {
@@ -30,7 +31,8 @@ class Variational final : public Stepper {
  public:
   Variational(const DynamicProblem& problem, const VariationalOptions& options,
               const RestState& initial)
-      : P_(problem), opt_(options), n_(options.nodes), ds_(problem.length() / (n_ - 1)) {
+      : P_(problem), opt_(options), n_(options.nodes), ds_(problem.length() / (n_ - 1)),
+        tangent_(n_, problem.model().xi_star(), problem.is_kirchhoff()) {
     if (n_ < 3) throw std::invalid_argument("variational: nodes must be >= 3");
     const auto& g0 = initial.g;
     RODLAB_THROW_UNLESS(static_cast<int>(g0.size()) == n_,
@@ -164,7 +166,42 @@ class Variational final : public Stepper {
       return constraint_failure(t1, dt);
     ledger_.dissipated += dt * dissipated;
     ledger_.work_in += dt * work;
+    dt_last_ = dt;
     return {};
+  }
+
+  std::unique_ptr<Stepper> clone() const override { return std::make_unique<Variational>(*this); }
+
+  // Every member a step changes (tests/control/test_plant.cpp checks bit-for-bit repetition).
+  void assign_state(const Stepper& other) override {
+    if constexpr (kActuated) {
+      throw unsupported("assign_state: variational with muscles or length control");
+    } else {
+      const auto& o = dynamic_cast<const Variational&>(other);
+      RODLAB_THROW_UNLESS(&o.P_ == &P_ && o.n_ == n_,
+                          "variational: assign_state from another problem or grid");
+      g_ = o.g_, G_ = o.G_;
+      xi_ = o.xi_, eta_ = o.eta_, mu_ = o.mu_;
+      ledger_ = o.ledger_;
+      kinetic_old_ = o.kinetic_old_;
+      dt_last_ = o.dt_last_;
+      if (constraint_) *constraint_ = *o.constraint_;
+    }
+  }
+
+  int tangent_size() const override { return tangent_.size(); }
+  void read_tangent(std::span<double> x) const override { tangent_.read(xi_, eta_, x); }
+  // The segments and poses follow the strains (3.38)-(3.39); the momenta follow the velocities
+  // through (3.42) with the last step's dt (M eta at rest, before the first step).
+  void add_tangent(std::span<const double> dx) override {
+    tangent_.add(dx, xi_, eta_);
+    for (int j = 0; j + 1 < n_; ++j) {
+      G_[j] = SE3::exp(ds_ * xi_[j]);
+      g_[j + 1] = g_[j] * G_[j];
+    }
+    for (int j = 1; j < n_; ++j)
+      mu_[j] = lie::se3::dexp_inv_transpose_apply(dt_last_ * eta_[j],
+                                                  legendre_.M.cwiseProduct(eta_[j]));  // (3.42)
   }
 
   Energy energy() const override {
@@ -282,8 +319,10 @@ class Variational final : public Stepper {
   std::vector<SE3> g_, G_;
   std::vector<Vector6> xi_, eta_, mu_;
   std::vector<DynamicProblem::EntryNode> entries_;
+  StaggeredTangent tangent_;
   Energy ledger_;
   double kinetic_old_ = 0.0;
+  double dt_last_ = 0.0;  ///< the last step's dt (the momenta of a moved state, add_tangent)
   bool kirchhoff_ = false;
   bool clamped_ = false;  ///< the tip node is held by a clamp (not solved)
   Vector3 nu_star_;

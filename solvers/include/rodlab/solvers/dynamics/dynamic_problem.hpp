@@ -22,6 +22,8 @@
 // have forces that the schemes determine: their unknowns (docs/dynamics.md "Muscles and length
 // control").
 #include <array>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -71,13 +73,18 @@ struct TendonActuator {
   bool is_cable = false;      ///< a cable (length control: a displacement; else a volume)
   std::shared_ptr<const loads::MuscleLaw> law;  ///< muscle
   std::optional<EmbeddedRod> embedded;          ///< muscle
+  /// A controller's input held over the current control step (solvers/control/plant.hpp),
+  /// which replaces the schedule; NaN: the schedule drives.
+  double held = std::numeric_limits<double>::quiet_NaN();
+  /// The input at t: the held one, else the schedule's.
+  double input_at(double t) const { return std::isnan(held) ? input.at(t) : held; }
   /// The drive force at t (ActuatorDrive::force only).
-  double force(double t) const { return force_per_input * input.at(t); }
+  double force(double t) const { return force_per_input * input_at(t); }
   /// Length control: the prescribed path length at t for a path of length `rest` in the
   /// reference configuration: rest - displacement(t) for a cable (2.47), volume(t) / A_c for a
   /// chamber (the chamber's section is rigid, so V = A_c x its length; docs/statics.md).
   double target_length(double t, double rest) const {
-    return is_cable ? rest - input.at(t) : loads::chamber_length(input.at(t), chamber_area);
+    return is_cable ? rest - input_at(t) : loads::chamber_length(input_at(t), chamber_area);
   }
 };
 
@@ -130,6 +137,9 @@ class DynamicProblem {
   /// The axial forces of one evaluation, by actuator index [N].
   using Forces = std::array<double, kMaxActuators>;
   const std::vector<TendonActuator>& actuators() const { return actuators_; }
+  /// Holds actuator k's input at `value` in place of its schedule (control: the input of the
+  /// coming control step); NaN gives it back to the schedule.
+  void hold_input(int k, double value) { actuators_.at(static_cast<std::size_t>(k)).held = value; }
   bool has_actuators() const { return !actuators_.empty(); }
   bool has_muscles() const { return muscles_; }
   bool has_length_control() const { return length_control_; }

@@ -9,6 +9,7 @@
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
 #include "rodlab/solvers/dynamics/shooting/bdf_alpha.hpp"
+#include "rodlab/solvers/dynamics/stepper.hpp"
 
 namespace rodlab::solvers::dynamics {
 
@@ -35,6 +36,13 @@ struct DynamicSolveOptions {
 /// The scheme options a scene sets (solver.alpha, solver.grid) and its initial state
 /// (dynamics.initial), over the defaults: what `rodlab dynamic` and the studies take from it.
 void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options);
+
+/// The initial state at rest (options.initial): the reference configuration, or the static
+/// equilibrium under the t = 0 loads. A clamped tip must hold the reference configuration's tip
+/// to start from it (else std::invalid_argument). A failed equilibrium leaves the reference
+/// configuration and its reason in `failure`.
+RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem,
+                        const DynamicSolveOptions& options, std::string& failure);
 
 /// Runs the simulation. Throws std::invalid_argument for bad options or unsupported scene
 /// features; a failed step or an instability ends the run with converged = false and the reason.

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -79,6 +81,33 @@ class Stepper {
   virtual std::vector<result::CenterlineSample> centerline() const = 0;
   /// The actuators with unknowns (DynamicProblem::unknown_actuators()), in that order.
   virtual std::vector<ActuatorReading> actuator_readings() const { return {}; }
+
+  // --- control (solvers/control/plant.hpp, docs/control.md "The state") -------------------
+  // A controller rolls futures out from a saved state and linearises a step in the state's
+  // tangent coordinates: the segment strains xi_j - xi* (j = 0..N-2; Kirchhoff rods: the
+  // angular part only, nu = nu* is held) followed by the node velocities eta_j (j = 1..N-1; the
+  // base is fixed). Poses follow from the strains, g_(j+1) = g_j exp(ds xi_j), so these are
+  // global coordinates of the configuration wherever |ds xi_j| < pi. A scheme that does not
+  // support control keeps the defaults, which throw std::invalid_argument.
+
+  /// A copy of this stepper with its state (allocates: a controller makes its snapshots once).
+  virtual std::unique_ptr<Stepper> clone() const { throw unsupported("clone"); }
+  /// Makes this stepper's state that of `other`, a clone of it (same scheme, problem and grid),
+  /// without allocating: the steps that follow repeat those of `other` bit for bit.
+  virtual void assign_state(const Stepper& /*other*/) { throw unsupported("assign_state"); }
+  /// The number of tangent coordinates.
+  virtual int tangent_size() const { throw unsupported("tangent_size"); }
+  /// The current state's tangent coordinates (x.size() == tangent_size()).
+  virtual void read_tangent(std::span<double> /*x*/) const { throw unsupported("read_tangent"); }
+  /// Moves the state by dx in tangent coordinates (the poses and every derived quantity follow).
+  virtual void add_tangent(std::span<const double> /*dx*/) { throw unsupported("add_tangent"); }
+
+ protected:
+  static std::invalid_argument unsupported(const char* what) {
+    return std::invalid_argument(std::string("this dynamics scheme does not support control (") +
+                                 what + "); use variational, implicit-midpoint, bdf-alpha or "
+                                        "implicit-midpoint-collocation");
+  }
 };
 
 }  // namespace rodlab::solvers::dynamics

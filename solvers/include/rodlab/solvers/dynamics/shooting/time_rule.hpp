@@ -59,6 +59,10 @@ class TimeRule {
   /// at the unknowns gets 1 minus it (midpoint: 0, the midpoint rule; BDF-alpha: 1/2, the
   /// trapezoid).
   virtual double ledger_start_weight() const = 0;
+  /// A copy with its history (a control snapshot, stepper.hpp; allocates).
+  virtual std::unique_ptr<TimeRule> clone() const = 0;
+  /// Takes the history of `other`, a clone of this rule, without allocating.
+  virtual void assign(const TimeRule& other) = 0;
 };
 
 /// Implicit midpoint (thesis Algorithm 2).

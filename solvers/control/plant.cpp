@@ -1,0 +1,132 @@
+#include "rodlab/solvers/control/plant.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <variant>
+
+#include "rodlab/check.hpp"
+#include "rodlab/rod/characteristics.hpp"
+#include "rodlab/solvers/dynamics/shooting/step_bound.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
+#include "rodlab/solvers/registry.hpp"
+#include "rodlab/solvers/statics/workspace.hpp"
+
+namespace rodlab::solvers::control {
+namespace {
+
+/// Relative slack on a bound: an input on its limit after rounding is inside.
+constexpr double kBoundSlack = 1e-12;
+/// A variational step that is a divisor of dt_c within this of its stable step still counts.
+constexpr double kStepRounding = 1e-9;
+
+/// The number of equal scheme steps in one control step of length dt_c.
+int substeps_of(const dynamics::DynamicProblem& problem, const PlantOptions& o, SchemeId id) {
+  double dt = o.solver.dt;
+  if (!(dt > 0.0))
+    dt = id == SchemeId::variational ? dynamics::auto_time_step(problem, "variational", o.solver.nodes)
+                                     : o.dt_control;
+  return std::max(1, static_cast<int>(std::ceil(o.dt_control / dt - kStepRounding)));
+}
+
+}  // namespace
+
+Plant::Plant(const scene::Scene& scene, const PlantOptions& options)
+    : dt_control_(options.dt_control) {
+  RODLAB_THROW_UNLESS(std::isfinite(options.dt_control) && options.dt_control > 0.0,
+                      "control: dt_control must be > 0 (got {:g})", options.dt_control);
+  RODLAB_THROW_UNLESS(options.solver.nodes >= min_nodes(Problem::dynamics), "nodes must be >= {}",
+                      min_nodes(Problem::dynamics));
+  const SchemeInfo& scheme = scheme_for(options.solver.scheme, Problem::dynamics);
+  RODLAB_THROW_UNLESS(!scene.actuators.empty(), "control: the scene '{}' has no actuators",
+                      scene.name);
+  problem_ = std::make_unique<dynamics::DynamicProblem>(dynamics::DynamicProblem::from_scene(scene));
+  RODLAB_THROW_UNLESS(!problem_->tip_clamped(), "control: the tip must be free (tip.free)");
+
+  // The inputs and their limits, as the workspaces take them (workspace.hpp); the scene is
+  // copied because workspace_inputs hands out pointers into it.
+  scene::Scene copy = scene;
+  const auto inputs = statics::workspace_inputs(copy);
+  const int m = static_cast<int>(inputs.size());
+  lower_.resize(m);
+  upper_.resize(m);
+  u_.resize(m);
+  for (int k = 0; k < m; ++k) {
+    lower_[k] = inputs[k].limits.first;
+    upper_[k] = inputs[k].limits.second;
+    u_[k] = std::clamp(inputs[k].value->at(0.0), lower_[k], upper_[k]);
+  }
+
+  substeps_ = substeps_of(*problem_, options, scheme.id);
+  dt_ = dt_control_ / substeps_;
+  if (scheme.id == SchemeId::implicit_midpoint || scheme.id == SchemeId::bdf_alpha) {
+    const std::string why = dynamics::single_shooting_step_problem(
+        *problem_, options.solver.scheme, options.solver.grid, dt_, options.solver.tol);
+    if (!why.empty()) throw std::invalid_argument(why);
+  }
+  set_input(u_);
+  std::string failure;
+  const dynamics::RestState initial = dynamics::initial_state(scene, *problem_, options.solver,
+                                                              failure);
+  if (!failure.empty()) throw std::invalid_argument("control: " + failure);
+  stepper_ = stepper_factory(scheme.id)(*problem_, options.solver, initial);
+
+  // characteristic sizes of the tangent coordinates (header)
+  const double L = problem_->length();
+  const auto c = rod::characteristics(problem_->model(), options.solver.nodes,
+                                      rod::TipSupport::free);
+  const double T = 1.0 / c.first_bending_frequency_hz;
+  const int n = options.solver.nodes;
+  const int strain = problem_->is_kirchhoff() ? 3 : 6;
+  state_scale_.resize(stepper_->tangent_size());
+  int i = 0;
+  for (int j = 0; j + 1 < n; ++j)
+    for (int k = 0; k < strain; ++k) state_scale_[i++] = k < 3 ? 1.0 / L : 1e-2;
+  for (int j = 1; j < n; ++j)
+    for (int k = 0; k < 6; ++k) state_scale_[i++] = k < 3 ? 1.0 / T : L / T;
+}
+
+void Plant::set_input(const Eigen::Ref<const Eigen::VectorXd>& u) {
+  RODLAB_THROW_UNLESS(u.size() == input_count(), "control: expected {} inputs, got {}",
+                      input_count(), u.size());
+  for (int k = 0; k < input_count(); ++k) {
+    const double slack = kBoundSlack * std::max(1.0, upper_[k] - lower_[k]);
+    RODLAB_THROW_UNLESS(u[k] >= lower_[k] - slack && u[k] <= upper_[k] + slack,
+                        "control: input {} = {:g} outside its limits [{:g}, {:g}]", k, u[k],
+                        lower_[k], upper_[k]);
+    problem_->hold_input(k, u[k]);
+  }
+  u_ = u;
+}
+
+dynamics::StepStatus Plant::advance() {
+  dynamics::StepStatus total;
+  for (int k = 0; k < substeps_; ++k) {
+    const dynamics::StepStatus s = stepper_->step(t_, dt_);
+    total.iterations += s.iterations;
+    if (!s.ok) {
+      total.ok = false;
+      total.reason = s.reason;
+      total.reached = s.reached;
+      return total;
+    }
+    t_ += dt_;
+  }
+  return total;
+}
+
+PlantSnapshot Plant::snapshot() const { return {stepper_->clone(), t_, u_}; }
+
+void Plant::save(PlantSnapshot& s) const {
+  s.stepper->assign_state(*stepper_);
+  s.t = t_;
+  s.u = u_;
+}
+
+void Plant::restore(const PlantSnapshot& s) {
+  stepper_->assign_state(*s.stepper);
+  t_ = s.t;
+  set_input(s.u);
+}
+
+}  // namespace rodlab::solvers::control

@@ -1,0 +1,53 @@
+#pragma once
+// The tangent coordinates of a state on the staggered grid (stepper.hpp, docs/control.md "The
+// state"), shared by the steppers that support control: the segment strains xi_j - xi*
+// (j = 0..N-2; Kirchhoff rods: the angular part only, nu = nu* is held) followed by the node
+// velocities eta_j (j = 1..N-1; the base is fixed). Private to solvers/dynamics.
+#include <span>
+
+#include "rodlab/check.hpp"
+#include "rodlab/lie/se3.hpp"
+
+namespace rodlab::solvers::dynamics {
+
+class StaggeredTangent {
+ public:
+  StaggeredTangent(int nodes, const lie::Vector6& xi_star, bool kirchhoff)
+      : nodes_(nodes), strain_dim_(kirchhoff ? 3 : 6), xi_star_(xi_star) {}
+
+  int size() const { return (nodes_ - 1) * (strain_dim_ + 6); }
+
+  /// x from the segment strains xi (N - 1) and node velocities eta (N).
+  void read(std::span<const lie::Vector6> xi, std::span<const lie::Vector6> eta,
+            std::span<double> x) const {
+    check(x.size());
+    std::size_t i = 0;
+    for (int j = 0; j + 1 < nodes_; ++j)
+      for (int c = 0; c < strain_dim_; ++c) x[i++] = xi[j][c] - xi_star_[c];
+    for (int j = 1; j < nodes_; ++j)
+      for (int c = 0; c < 6; ++c) x[i++] = eta[j][c];
+  }
+
+  /// xi += dx's strain part, eta += its velocity part.
+  void add(std::span<const double> dx, std::span<lie::Vector6> xi,
+           std::span<lie::Vector6> eta) const {
+    check(dx.size());
+    std::size_t i = 0;
+    for (int j = 0; j + 1 < nodes_; ++j)
+      for (int c = 0; c < strain_dim_; ++c) xi[j][c] += dx[i++];
+    for (int j = 1; j < nodes_; ++j)
+      for (int c = 0; c < 6; ++c) eta[j][c] += dx[i++];
+  }
+
+ private:
+  void check(std::size_t got) const {
+    RODLAB_THROW_UNLESS(static_cast<int>(got) == size(),
+                        "tangent coordinates: expected {} values, got {}", size(), got);
+  }
+
+  int nodes_;
+  int strain_dim_;
+  lie::Vector6 xi_star_;
+};
+
+}  // namespace rodlab::solvers::dynamics

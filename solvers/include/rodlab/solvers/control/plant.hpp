@@ -1,0 +1,101 @@
+#pragma once
+// The plant of a controller (thesis 4.2, (4.13) x_(i+1) = f(x_i, u_i); docs/control.md): a
+// dynamics scheme stepping one scene under inputs u that a controller sets once per control
+// step of length dt_c and holds over it (zero-order hold). u holds the drive input of every
+// actuator in scene order (cable tension or displacement, fluidic pressure or volume, muscle
+// input q), each inside the actuator's `limits`. One control step is one step of an implicit
+// scheme (dt = dt_c, or several equal steps when solver dt is set smaller), or as many equal
+// `variational` steps below its stability limit as dt_c needs.
+//
+// A controller rolls futures out from the current state: snapshot() makes a copy once
+// (allocating), save()/restore() copy a state into and out of it without allocating, so a
+// rollout from a restored state repeats the original bit for bit. The state's tangent
+// coordinates (stepper.hpp: segment strains minus xi*, node velocities) give LQR and iLQR the
+// vector space they work in.
+#include <memory>
+#include <span>
+
+#include <Eigen/Core>
+
+#include "rodlab/scene/scene.hpp"
+#include "rodlab/solvers/dynamics/solve_dynamic.hpp"
+#include "rodlab/solvers/dynamics/stepper.hpp"
+
+namespace rodlab::solvers::control {
+
+using lie::Vector3;
+
+struct PlantOptions {
+  PlantOptions() { solver.max_iterations = kShotsPerStep; }
+  /// Single shooting needs 80-100 integrations for the step after a 0.4 N jump of a cable's
+  /// tension at dt = 0.01 s (N = 10-40, the control robot; 50, the dynamics default, fails):
+  /// a controller's inputs jump at every control step.
+  static constexpr int kShotsPerStep = 200;
+  /// The scheme and its options (scheme, nodes, tol, grid, alpha, initial); solver.dt is the
+  /// scheme's own step: 0 takes dt_c for the implicit schemes and the stable step (dt: auto)
+  /// for `variational`.
+  dynamics::DynamicSolveOptions solver;
+  double dt_control = 0.05;  ///< [s], > 0
+};
+
+/// A saved plant state (Plant::snapshot); opaque to controllers.
+struct PlantSnapshot {
+  std::unique_ptr<dynamics::Stepper> stepper;
+  double t = 0.0;
+  Eigen::VectorXd u;
+};
+
+class Plant {
+ public:
+  /// Throws std::invalid_argument for bad options, a scheme without control support, a tip that
+  /// is not free, an actuator without `limits`, a scene without actuators, or a step that the
+  /// scheme refuses (single shooting's lower step bound, step_bound.hpp).
+  Plant(const scene::Scene& scene, const PlantOptions& options);
+
+  int input_count() const { return static_cast<int>(lower_.size()); }
+  const Eigen::VectorXd& lower() const { return lower_; }
+  const Eigen::VectorXd& upper() const { return upper_; }
+  double dt_control() const { return dt_control_; }
+  /// The scheme's step and the number of them in a control step.
+  double substep() const { return dt_; }
+  int substeps() const { return substeps_; }
+  double time() const { return t_; }
+  double length() const { return problem_->length(); }
+  const dynamics::DynamicProblem& problem() const { return *problem_; }
+
+  /// The input of the coming control steps; throws std::invalid_argument unless each u_k lies
+  /// in [lower_k, upper_k] (controllers respect the bounds: a violation is a bug, not a clip).
+  void set_input(const Eigen::Ref<const Eigen::VectorXd>& u);
+  const Eigen::VectorXd& input() const { return u_; }
+  /// Advances one control step under the held input; a failed step (no convergence, instability)
+  /// is reported in the status and leaves the state where the scheme stopped.
+  dynamics::StepStatus advance();
+
+  Vector3 tip() const { return stepper_->tip_position(); }
+  const dynamics::Stepper& stepper() const { return *stepper_; }
+
+  /// A copy of the current state (allocates).
+  PlantSnapshot snapshot() const;
+  /// Copies the current state into `s`, a snapshot of this plant, without allocating.
+  void save(PlantSnapshot& s) const;
+  /// Makes `s` the current state (time and input included), without allocating.
+  void restore(const PlantSnapshot& s);
+
+  /// Tangent coordinates of the state (stepper.hpp).
+  int state_size() const { return stepper_->tangent_size(); }
+  void read_state(std::span<double> x) const { stepper_->read_tangent(x); }
+  void add_state(std::span<const double> dx) { stepper_->add_tangent(dx); }
+  /// A characteristic size of each tangent coordinate (finite-difference steps, weights):
+  /// 1/L for bending and torsion strains, 1e-2 for shear and axial strains, 1/T for angular and
+  /// L/T for linear velocities, T the period of the first bending mode.
+  const Eigen::VectorXd& state_scale() const { return state_scale_; }
+
+ private:
+  std::unique_ptr<dynamics::DynamicProblem> problem_;  // the steppers refer to it: fixed address
+  std::unique_ptr<dynamics::Stepper> stepper_;
+  Eigen::VectorXd lower_, upper_, u_, state_scale_;
+  double dt_control_ = 0.0, dt_ = 0.0, t_ = 0.0;
+  int substeps_ = 1;
+};
+
+}  // namespace rodlab::solvers::control

@@ -1,0 +1,165 @@
+// The plant of the controllers (solvers/control/plant.hpp): snapshots repeat a run bit for bit,
+// the held input is the schedule's constant, the tangent coordinates are the strains and
+// velocities (closed form: a uniform bend is the constant-curvature arc), bounds are enforced.
+#define BOOST_TEST_MODULE control_plant
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "control_support.hpp"
+#include "rodlab/solvers/dynamics/solve_dynamic.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
+
+namespace c = rodlab::solvers::control;
+namespace d = rodlab::solvers::dynamics;
+using rodlab::testing::control::cable_robot;
+using rodlab::testing::control::plant_options;
+
+namespace {
+
+struct Case {
+  std::string scheme, model, grid;
+};
+
+// The schemes the plant supports, Cosserat and Kirchhoff, on their default grids.
+const std::vector<Case> kCases = {{"variational", "cosserat", ""},
+                                  {"variational", "kirchhoff", ""},
+                                  {"implicit-midpoint", "cosserat", ""},
+                                  {"implicit-midpoint", "kirchhoff", ""},
+                                  {"bdf-alpha", "cosserat", ""}};
+
+c::Plant make(const Case& k, double dt_control = 0.01, int nodes = 10) {
+  return c::Plant(cable_robot(k.model), plant_options(k.scheme, nodes, dt_control));
+}
+
+Eigen::VectorXd input(double a, double b, double c_, double d_) {
+  Eigen::VectorXd u(4);
+  u << a, b, c_, d_;
+  return u;
+}
+
+}  // namespace
+
+// A rollout from a restored snapshot repeats the original steps exactly (the controllers'
+// rollouts depend on it): every member that a step changes is part of the state.
+BOOST_AUTO_TEST_CASE(restored_snapshot_repeats_bit_for_bit) {
+  for (const Case& k : kCases) {
+    BOOST_TEST_CONTEXT(k.scheme << " " << k.model) {
+      c::Plant plant = make(k);
+      plant.set_input(input(0.4, 0.1, 0.0, 0.0));
+      for (int i = 0; i < 3; ++i) BOOST_REQUIRE(plant.advance().ok);
+      c::PlantSnapshot snap = plant.snapshot();
+      std::vector<rodlab::lie::Vector3> tips;
+      for (int i = 0; i < 4; ++i) {
+        BOOST_REQUIRE(plant.advance().ok);
+        tips.push_back(plant.tip());
+      }
+      // another future in between, then the first one again
+      plant.restore(snap);
+      plant.set_input(input(0.0, 0.5, 0.2, 0.0));
+      for (int i = 0; i < 2; ++i) {
+        const auto status = plant.advance();
+        BOOST_TEST_REQUIRE(status.ok, status.reason);
+      }
+      BOOST_TEST((plant.tip() - tips[1]).norm() > 1e-6);  // it did go elsewhere
+      c::PlantSnapshot other = plant.snapshot();
+      plant.save(other);
+      plant.restore(snap);
+      BOOST_TEST(plant.input()[0] == 0.4);
+      for (int i = 0; i < 4; ++i) {
+        BOOST_REQUIRE(plant.advance().ok);
+        BOOST_TEST((plant.tip() - tips[i]).norm() == 0.0);  // bit for bit
+      }
+    }
+  }
+}
+
+// Holding u over the control steps is the constant schedule: the plant's tip after 0.04 s equals
+// `rodlab dynamic`'s (solve_dynamic) with the tensions as constants and the same step (the same
+// code, so to rounding: 1e-14 m).
+BOOST_AUTO_TEST_CASE(held_input_is_the_constant_schedule) {
+  for (const Case& k : {kCases[0], kCases[2]}) {
+    BOOST_TEST_CONTEXT(k.scheme) {
+      c::Plant plant = make(k);
+      plant.set_input(input(0.3, 0.0, 0.0, 0.2));
+      for (int i = 0; i < 4; ++i) BOOST_REQUIRE(plant.advance().ok);
+      rodlab::scene::Scene scene = cable_robot(k.model);
+      std::get<rodlab::scene::Cable>(scene.actuators[0]).tension = rodlab::scene::ScalarSchedule(0.3);
+      std::get<rodlab::scene::Cable>(scene.actuators[3]).tension = rodlab::scene::ScalarSchedule(0.2);
+      d::DynamicSolveOptions o;
+      o.scheme = k.scheme;
+      o.nodes = 10;
+      o.dt = plant.substep();
+      o.t_end = 0.04;
+      const auto run = d::solve_dynamic(scene, o);
+      BOOST_REQUIRE(run.converged);
+      BOOST_TEST(plant.time() == 0.04, boost::test_tools::tolerance(1e-12));
+      BOOST_TEST((plant.tip() - run.tip_position.back()).norm() < 1e-14);
+      BOOST_TEST(plant.tip().x() > 1e-4);  // the +x cable bent it towards +x
+    }
+  }
+}
+
+// The tangent coordinates are the segment strains minus xi* and the node velocities: reading
+// after a move returns the move, and a uniform bending strain kappa about y puts the tip on the
+// constant-curvature arc ((1 - cos kappa L) / kappa, 0, sin kappa L / kappa) (closed form, to
+// rounding).
+BOOST_AUTO_TEST_CASE(tangent_coordinates_are_strains_and_velocities) {
+  const double kappa = 8.0, L = 0.1;
+  for (const Case& k : kCases) {
+    BOOST_TEST_CONTEXT(k.scheme << " " << k.model) {
+      c::Plant plant = make(k);
+      const int n = plant.state_size();
+      const int strain = k.model == "kirchhoff" ? 3 : 6;
+      BOOST_TEST(n == 9 * strain + 9 * 6);
+      BOOST_TEST(plant.state_scale().size() == n);
+      std::vector<double> x(n), dx(n, 0.0), y(n);
+      plant.read_state(x);
+      for (double v : x) BOOST_TEST(std::abs(v) < 1e-14);  // at rest, straight (rounding of log)
+      for (int j = 0; j < 9; ++j) dx[j * strain + 1] = kappa;
+      for (int i = 9 * strain; i < n; ++i) dx[i] = 1e-3 * (i % 7);  // some velocities
+      plant.add_state(dx);
+      plant.read_state(y);
+      for (int i = 0; i < n; ++i) BOOST_TEST(std::abs(y[i] - x[i] - dx[i]) < 1e-14);
+      const rodlab::lie::Vector3 arc((1 - std::cos(kappa * L)) / kappa, 0.0,
+                                     std::sin(kappa * L) / kappa);
+      BOOST_TEST((plant.tip() - arc).norm() < 1e-15);
+      const auto status = plant.advance();  // a moved state steps
+      BOOST_TEST_REQUIRE(status.ok, status.reason);
+    }
+  }
+}
+
+// Inputs outside their limits are refused (a controller bug, not a clip); a scene without
+// limits, a clamped tip or a scheme without control support is refused up front.
+BOOST_AUTO_TEST_CASE(bounds_and_unsupported_set_ups_are_refused) {
+  c::Plant plant = make(kCases[2]);
+  BOOST_TEST(plant.input_count() == 4);
+  BOOST_TEST(plant.lower()[2] == 0.0);
+  BOOST_TEST(plant.upper()[2] == 0.5);
+  BOOST_CHECK_THROW(plant.set_input(input(0.6, 0, 0, 0)), std::invalid_argument);
+  BOOST_CHECK_THROW(plant.set_input(input(-0.1, 0, 0, 0)), std::invalid_argument);
+  BOOST_CHECK_THROW(plant.set_input(Eigen::VectorXd::Zero(3)), std::invalid_argument);
+  BOOST_CHECK_EXCEPTION(
+      c::Plant(cable_robot("cosserat", "span: [0, 0.1]"), plant_options("variational", 10, 0.01)),
+      std::invalid_argument, [](const std::invalid_argument& e) {
+        return std::string(e.what()).find("limits") != std::string::npos;
+      });
+  BOOST_CHECK_EXCEPTION(c::Plant(cable_robot(), plant_options("ida", 10, 0.01)),
+                        std::invalid_argument, [](const std::invalid_argument& e) {
+                          return std::string(e.what()).find("control") != std::string::npos;
+                        });
+  BOOST_CHECK_THROW(c::Plant(cable_robot(), plant_options("variational", 10, 0.0)),
+                    std::invalid_argument);
+}
+
+// `variational` takes as many equal steps below its stability limit as a control step needs.
+BOOST_AUTO_TEST_CASE(variational_substeps_below_its_limit) {
+  c::Plant plant = make(kCases[0], 0.01);
+  const double limit = d::variational_stable_step(plant.problem(), 10);
+  BOOST_TEST(plant.substeps() > 1);
+  BOOST_TEST(plant.substep() <= limit);
+  BOOST_TEST(plant.substep() * plant.substeps() == 0.01, boost::test_tools::tolerance(1e-14));
+}
