@@ -1,0 +1,131 @@
+// The linearisation of a control step (solvers/control/linearisation.hpp): directional
+// derivatives agree with the columns of A and B, the remainder of the linear model is second
+// order, and the steady state of the linearised plant is the closed-form statics of a cable.
+#define BOOST_TEST_MODULE control_linearisation
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <Eigen/LU>
+
+#include "control_support.hpp"
+#include "rodlab/solvers/control/linearisation.hpp"
+
+namespace c = rodlab::solvers::control;
+using rodlab::testing::control::cable_robot;
+using rodlab::testing::control::plant_options;
+
+namespace {
+
+// N = 6 keeps A small (60 x 60).
+c::Plant make(const std::string& scheme, const std::string& model = "cosserat") {
+  return c::Plant(cable_robot(model), plant_options(scheme, 6, 0.01));
+}
+
+/// The plant moved off rest: three control steps under some tensions.
+void drive(c::Plant& plant) {
+  Eigen::VectorXd u(4);
+  u << 0.3, 0.1, 0.0, 0.05;
+  plant.set_input(u);
+  for (int i = 0; i < 3; ++i) BOOST_REQUIRE(plant.advance().ok);
+}
+
+Eigen::VectorXd state(const c::Plant& p) {
+  Eigen::VectorXd x(p.state_size());
+  p.read_state(std::span<double>(x.data(), x.size()));
+  return x;
+}
+
+}  // namespace
+
+// One directional derivative against the same combination of A's and B's columns: both are
+// central differences of the same step, so they agree to the differences' error: the step's own
+// solver error over the difference step (tol 1e-10 / 1e-5 for shooting; measured 1e-6 to 5e-6 of
+// the derivative's size, 3e-5 accepted). The plant is left where it was.
+BOOST_AUTO_TEST_CASE(directional_derivative_matches_the_columns) {
+  for (const std::string scheme : {"implicit-midpoint", "variational"}) {
+    BOOST_TEST_CONTEXT(scheme) {
+      c::Plant plant = make(scheme);
+      drive(plant);
+      const Eigen::VectorXd x0 = state(plant);
+      c::Linearisation lin(plant);
+      Eigen::MatrixXd A, B, C, D;
+      BOOST_REQUIRE(lin.jacobians(plant, A, B, C, D).ok);
+      BOOST_TEST((state(plant) - x0).norm() == 0.0);  // restored
+      Eigen::VectorXd v = Eigen::VectorXd::Zero(plant.state_size());
+      for (int i = 0; i < v.size(); ++i) v[i] = plant.state_scale()[i] * std::sin(1.0 + i);
+      Eigen::VectorXd w(4);
+      w << 0.2, -0.1, 0.3, 0.0;
+      c::StepDerivative d;
+      BOOST_REQUIRE(lin.directional(plant, v, w, d).ok);
+      const Eigen::VectorXd model = A * v + B * w;
+      BOOST_TEST((d.dx - model).norm() < 3e-5 * model.norm());
+      BOOST_TEST((d.dtip - (C * v + D * w)).norm() < 3e-5 * d.dtip.norm());
+      BOOST_TEST(d.dtip.norm() > 0.0);
+    }
+  }
+}
+
+// The linear model's remainder x+(x + e v, u + e w) - x+(x, u) - e (A v + B w) is O(e^2): halving
+// e divides it by 4 (3 to 5 accepted), which checks A and B are the step's derivative and not
+// merely a fit.
+BOOST_AUTO_TEST_CASE(linear_model_remainder_is_second_order) {
+  c::Plant plant = make("implicit-midpoint");
+  drive(plant);
+  c::Linearisation lin(plant);
+  Eigen::MatrixXd A, B, C, D;
+  BOOST_REQUIRE(lin.jacobians(plant, A, B, C, D).ok);
+  const c::PlantSnapshot start = plant.snapshot();
+  const Eigen::VectorXd u0 = plant.input();
+  BOOST_REQUIRE(plant.advance().ok);
+  const Eigen::VectorXd x1 = state(plant);
+  Eigen::VectorXd v(plant.state_size());
+  for (int i = 0; i < v.size(); ++i) v[i] = plant.state_scale()[i] * std::cos(2.0 + i);
+  Eigen::VectorXd w(4);
+  w << 0.5, 0.2, 0.1, 0.3;
+  std::vector<double> remainder;
+  for (double e : {0.02, 0.01}) {
+    plant.restore(start);
+    const Eigen::VectorXd dx = e * v;
+    plant.add_state(std::span<const double>(dx.data(), dx.size()));
+    plant.set_input(u0 + e * w);
+    BOOST_REQUIRE(plant.advance().ok);
+    remainder.push_back((state(plant) - x1 - e * (A * v + B * w)).norm());
+  }
+  BOOST_TEST_MESSAGE("remainders " << remainder[0] << " " << remainder[1]);
+  BOOST_TEST(remainder[0] / remainder[1] > 3.0);
+  BOOST_TEST(remainder[0] / remainder[1] < 5.0);
+}
+
+// At rest, straight, the steady state of the linearised plant under a tension dF on the +x cable,
+// x_ss = (I - A)^-1 B dF, has the tip d p = C x_ss + D dF of the linear statics (closed form): a
+// uniform curvature kappa = F r / (E I) and axial strain -F / (E A), so dp_x/dF = r L^2 / (2 E I)
+// and dp_z/dF = -L / (E A) (Kirchhoff: 0). Every grid represents a uniform strain exactly, so
+// only the differences' error remains (1e-5).
+BOOST_AUTO_TEST_CASE(steady_state_of_the_linearisation_is_the_cable_statics) {
+  const double L = 0.1, r = 0.004, E = 1e6, d = 0.01;
+  const double I = std::numbers::pi * std::pow(d, 4) / 64.0, A_s = std::numbers::pi * d * d / 4.0;
+  for (const auto& [scheme, model] : std::vector<std::pair<std::string, std::string>>{
+           {"implicit-midpoint", "cosserat"}, {"variational", "cosserat"},
+           {"variational", "kirchhoff"}, {"bdf-alpha", "cosserat"}}) {
+    BOOST_TEST_CONTEXT(scheme << " " << model) {
+      c::Plant plant = make(scheme, model);
+      c::Linearisation lin(plant);
+      Eigen::MatrixXd A, B, C, D;
+      BOOST_REQUIRE(lin.jacobians(plant, A, B, C, D).ok);
+      const int n = plant.state_size();
+      const Eigen::VectorXd x_ss =
+          (Eigen::MatrixXd::Identity(n, n) - A).partialPivLu().solve(B.col(0));
+      const Eigen::Vector3d dp = C * x_ss + D.col(0);
+      const double dpx = r * L * L / (2.0 * E * I);
+      const double dpz = model == "kirchhoff" ? 0.0 : -L / (E * A_s);
+      BOOST_TEST_MESSAGE("dp/dF = " << dp.transpose() << " closed form " << dpx << " 0 " << dpz);
+      BOOST_TEST(std::abs(dp.x() - dpx) < 1e-5 * dpx);
+      BOOST_TEST(std::abs(dp.y()) < 1e-8 * dpx);
+      BOOST_TEST(std::abs(dp.z() - dpz) < 1e-5 * dpx);
+    }
+  }
+}
