@@ -56,6 +56,22 @@ dynamics::StepStatus Linearisation::directional(Plant& plant,
                                                 const Eigen::Ref<const Eigen::VectorXd>& dx,
                                                 const Eigen::Ref<const Eigen::VectorXd>& du,
                                                 StepDerivative& out) {
+  return difference(plant, dx, du, out, nullptr, nullptr);
+}
+
+dynamics::StepStatus Linearisation::directional(Plant& plant,
+                                                const Eigen::Ref<const Eigen::VectorXd>& dx,
+                                                const Eigen::Ref<const Eigen::VectorXd>& du,
+                                                StepDerivative& out, const Eigen::VectorXd& x_next,
+                                                const Vector3& tip_next) {
+  return difference(plant, dx, du, out, &x_next, &tip_next);
+}
+
+dynamics::StepStatus Linearisation::difference(Plant& plant,
+                                               const Eigen::Ref<const Eigen::VectorXd>& dx,
+                                               const Eigen::Ref<const Eigen::VectorXd>& du,
+                                               StepDerivative& out, const Eigen::VectorXd* x_next,
+                                               const Vector3* tip_next) {
   RODLAB_THROW_UNLESS(dx.size() == plant.state_size() && du.size() == plant.input_count(),
                       "linearisation: expected directions of sizes {} and {}, got {} and {}",
                       plant.state_size(), plant.input_count(), dx.size(), du.size());
@@ -78,13 +94,20 @@ dynamics::StepStatus Linearisation::directional(Plant& plant,
     status = perturbed(plant, h, dx, du, x_plus_, tip_plus);
     if (status.ok) status = perturbed(plant, -h, dx, du, x_minus_, tip_minus);
     span = 2.0 * h;
-  } else if (up) {  // forward: the feasible side (or the thesis' choice)
-    status = perturbed(plant, h, dx, du, x_plus_, tip_plus);
-    if (status.ok) status = perturbed(plant, 0.0, dx, du, x_minus_, tip_minus);
-  } else {
-    RODLAB_THROW_UNLESS(down, "linearisation: neither side of the input direction is feasible");
-    status = perturbed(plant, 0.0, dx, du, x_plus_, tip_plus);
-    if (status.ok) status = perturbed(plant, -h, dx, du, x_minus_, tip_minus);
+  } else {  // one-sided: the feasible side (forward as (4.33)-(4.34) where both are)
+    RODLAB_THROW_UNLESS(up || down, "linearisation: neither side of the input direction is feasible");
+    const double side = up ? h : -h;
+    Eigen::VectorXd& moved = up ? x_plus_ : x_minus_;
+    Eigen::VectorXd& nominal = up ? x_minus_ : x_plus_;
+    Vector3& tip_moved = up ? tip_plus : tip_minus;
+    Vector3& tip_nominal = up ? tip_minus : tip_plus;
+    status = perturbed(plant, side, dx, du, moved, tip_moved);
+    if (status.ok && x_next != nullptr) {
+      nominal = *x_next;
+      tip_nominal = *tip_next;
+    } else if (status.ok) {
+      status = perturbed(plant, 0.0, dx, du, nominal, tip_nominal);
+    }
   }
   if (status.ok) {
     out.dx = (x_plus_ - x_minus_) / span;

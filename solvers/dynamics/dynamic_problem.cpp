@@ -150,7 +150,7 @@ double DynamicProblem::span_overlap(int k, double a, double b) const {
 Vector6 DynamicProblem::actuator_wrench(const Vector6& xi, double s, const Forces& F) const {
   Vector6 W = Vector6::Zero();
   for (std::size_t k = 0; k < actuators_.size(); ++k)
-    if (actuators_[k].path.active(s)) W += F[k] * actuators_[k].path.unit_wrench(s, xi);
+    if (F[k] != 0.0 && actuators_[k].path.active(s)) W += F[k] * actuators_[k].path.unit_wrench(s, xi);
   return W;
 }
 
@@ -158,7 +158,8 @@ double DynamicProblem::actuator_power(const Vector6& xi, const Vector6& xi_dot, 
                                       const Forces& F) const {
   double P = 0.0;
   for (std::size_t k = 0; k < actuators_.size(); ++k)
-    if (actuators_[k].path.active(s)) P -= F[k] * actuators_[k].path.unit_wrench(s, xi).dot(xi_dot);
+    if (F[k] != 0.0 && actuators_[k].path.active(s))
+      P -= F[k] * actuators_[k].path.unit_wrench(s, xi).dot(xi_dot);
   return P;
 }
 
@@ -209,7 +210,8 @@ Vector6 DynamicProblem::solve_strain(const lie::Matrix6& Kt, const Vector6& xi_r
                           [&](const Vector6& xi, Vector6& r, lie::Matrix6& J) {
                             for (std::size_t k = 0; k < actuators_.size(); ++k) {
                               const auto& path = actuators_[k].path;
-                              if (!path.active(s)) continue;
+                              // a slack cable adds exactly nothing (a controller's are often 0)
+                              if (F[k] == 0.0 || !path.active(s)) continue;
                               r += F[k] * path.unit_wrench(s, xi);
                               J += F[k] * path.unit_wrench_jacobian(s, xi);
                             }

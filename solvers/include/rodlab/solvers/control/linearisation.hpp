@@ -35,6 +35,11 @@ class Linearisation {
   /// return. A step that fails in a perturbed run is reported (ok false, reason).
   dynamics::StepStatus directional(Plant& plant, const Eigen::Ref<const Eigen::VectorXd>& dx,
                                    const Eigen::Ref<const Eigen::VectorXd>& du, StepDerivative& out);
+  /// The same where the unperturbed step's x+ and tip are known (a controller's rollout): with
+  /// forward differences (options.central false) one control step instead of two.
+  dynamics::StepStatus directional(Plant& plant, const Eigen::Ref<const Eigen::VectorXd>& dx,
+                                   const Eigen::Ref<const Eigen::VectorXd>& du, StepDerivative& out,
+                                   const Eigen::VectorXd& x_next, const Vector3& tip_next);
 
   /// A (n x n) and B (n x m), column by column, and the tip Jacobian C = d p_tip(x+) / d x and
   /// D = d p_tip(x+) / d u (3 x n, 3 x m).
@@ -43,6 +48,9 @@ class Linearisation {
 
  private:
   /// x+ and the tip after one control step from the saved state moved by h (dx, du).
+  dynamics::StepStatus difference(Plant& plant, const Eigen::Ref<const Eigen::VectorXd>& dx,
+                                  const Eigen::Ref<const Eigen::VectorXd>& du, StepDerivative& out,
+                                  const Eigen::VectorXd* x_next, const Vector3* tip_next);
   dynamics::StepStatus perturbed(Plant& plant, double h, const Eigen::Ref<const Eigen::VectorXd>& dx,
                                  const Eigen::Ref<const Eigen::VectorXd>& du, Eigen::VectorXd& x,
                                  Vector3& tip);

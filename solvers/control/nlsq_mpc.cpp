@@ -1,0 +1,196 @@
+#include "rodlab/solvers/control/nlsq_mpc.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rodlab/check.hpp"
+#include "rodlab/solvers/control/box_qp.hpp"
+
+namespace rodlab::solvers::control {
+namespace {
+
+/// Levenberg-Marquardt: the damping's start (relative to diag(J^T J)), its growth on a
+/// rejected step, the gain ratio that accepts a step, and the trials per iteration.
+constexpr double kInitialDamping = 1e-3;
+constexpr double kDampingGrowth = 4.0;
+constexpr double kAcceptRatio = 1e-4;
+constexpr int kTrialsPerIteration = 12;
+
+}  // namespace
+
+NlsqMpc::NlsqMpc(const Plant& plant, const MpcOptions& options)
+    : options_(options), lin_(plant, LinearisationOptions{1e-5, false}), start_(plant.snapshot()) {
+  RODLAB_THROW_UNLESS(options.horizon >= 1, "nlsq-mpc: horizon must be >= 1 (got {})",
+                      options.horizon);
+  RODLAB_THROW_UNLESS(options.input_rate_weight >= 0.0 && options.input_weight >= 0.0,
+                      "nlsq-mpc: weights must be >= 0");
+  RODLAB_THROW_UNLESS(options.max_iterations >= 1, "nlsq-mpc: max_iterations must be >= 1");
+  const int H = options.horizon, m = plant.input_count(), n = plant.state_size();
+  for (int k = 0; k < H; ++k) states_.push_back(plant.snapshot());
+  xs_.assign(H, Eigen::VectorXd(n));
+  tips_.resize(H);
+  plan_.resize(H, m);
+  for (int k = 0; k < H; ++k) plan_.row(k) = plant.input().transpose();
+  applied_ = plant.input();
+  range_ = (plant.upper() - plant.lower()).cwiseMax(1e-300);
+  dx_.resize(n);
+  du_.resize(m);
+  zero_u_ = Eigen::VectorXd::Zero(m);
+  zero_x_ = Eigen::VectorXd::Zero(n);
+  d_.dx.resize(n);
+}
+
+bool NlsqMpc::residuals(Plant& plant, std::span<const Vector3> targets, const Eigen::VectorXd& U,
+                        Eigen::VectorXd& r, std::string& reason) {
+  const int H = options_.horizon, m = plant.input_count();
+  const bool effort = options_.input_weight > 0.0;
+  r.resize(3 * H + H * m + (effort ? H * m : 0));
+  plant.restore(start_);
+  const double L = plant.length();
+  for (int k = 0; k < H; ++k) {
+    plant.set_input(U.segment(k * m, m));
+    plant.save(states_[k]);
+    const dynamics::StepStatus status = plant.advance();
+    if (!status.ok) {
+      reason = status.reason;
+      return false;
+    }
+    plant.read_state(std::span<double>(xs_[k].data(), xs_[k].size()));
+    tips_[k] = plant.tip();
+    r.segment<3>(3 * k) = (tips_[k] - targets[k]) / L;
+  }
+  const double rate = std::sqrt(options_.input_rate_weight);
+  const double w = std::sqrt(options_.input_weight);
+  for (int k = 0; k < H; ++k)
+    for (int i = 0; i < m; ++i) {
+      const double previous = k == 0 ? applied_[i] : U[(k - 1) * m + i];
+      r[3 * H + k * m + i] = rate * (U[k * m + i] - previous) / range_[i];
+      if (effort) r[3 * H + H * m + k * m + i] = w * (U[k * m + i] - plant.lower()[i]) / range_[i];
+    }
+  return true;
+}
+
+bool NlsqMpc::jacobian(Plant& plant, Eigen::MatrixXd& J, std::string& reason) {
+  const int H = options_.horizon, m = plant.input_count(), n_u = H * m;
+  const bool effort = options_.input_weight > 0.0;
+  J.setZero(3 * H + n_u + (effort ? n_u : 0), n_u);
+  const double L = plant.length();  // the tracking residuals are (p_k - p_des,k) / L
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < m; ++i) {
+      const int col = j * m + i;
+      du_.setZero();
+      du_[i] = range_[i];
+      for (int k = j; k < H; ++k) {  // u_j,i acts on p_(j+1) and propagates to p_H
+        plant.restore(states_[k]);   // x_k under u_k (the rollout)
+        const auto status = k == j ? lin_.directional(plant, zero_x_, du_, d_, xs_[k], tips_[k])
+                                   : lin_.directional(plant, dx_, zero_u_, d_, xs_[k], tips_[k]);
+        if (!status.ok) {
+          reason = status.reason;
+          return false;
+        }
+        J.block<3, 1>(3 * k, col) = d_.dtip / (range_[i] * L);
+        dx_ = d_.dx;
+      }
+    }
+  const double rate = std::sqrt(options_.input_rate_weight);
+  const double w = std::sqrt(options_.input_weight);
+  for (int k = 0; k < H; ++k)
+    for (int i = 0; i < m; ++i) {
+      const int row = k * m + i;
+      J(3 * H + row, row) = rate / range_[i];
+      if (k > 0) J(3 * H + row, row - m) = -rate / range_[i];
+      if (effort) J(3 * H + n_u + row, row) = w / range_[i];
+    }
+  return true;
+}
+
+bool NlsqMpc::evaluate(Plant& plant, std::span<const Vector3> targets, const Eigen::VectorXd& U,
+                       Eigen::VectorXd& r, Eigen::MatrixXd* J, std::string& reason) {
+  RODLAB_THROW_UNLESS(static_cast<int>(targets.size()) == options_.horizon &&
+                          U.size() == options_.horizon * plant.input_count(),
+                      "nlsq-mpc: expected {} targets and {} inputs", options_.horizon,
+                      options_.horizon * plant.input_count());
+  plant.save(start_);
+  applied_ = plant.input();
+  bool ok = residuals(plant, targets, U, r, reason);
+  if (ok && J != nullptr) ok = jacobian(plant, *J, reason);
+  plant.restore(start_);
+  return ok;
+}
+
+MpcPlan NlsqMpc::plan(Plant& plant, std::span<const Vector3> targets) {
+  const int H = options_.horizon, m = plant.input_count(), n_u = H * m;
+  RODLAB_THROW_UNLESS(static_cast<int>(targets.size()) == H,
+                      "nlsq-mpc: expected {} targets (one per step of the horizon), got {}", H,
+                      targets.size());
+  plant.save(start_);
+  applied_ = plant.input();
+  // warm start: the last plan shifted by a step, its last input repeated, inside the limits
+  for (int k = 0; k + 1 < H; ++k) plan_.row(k) = plan_.row(k + 1);
+  U_.resize(n_u);
+  for (int k = 0; k < H; ++k)
+    for (int i = 0; i < m; ++i)
+      U_[k * m + i] = std::clamp(plan_(k, i), plant.lower()[i], plant.upper()[i]);
+  const Eigen::VectorXd range = range_.replicate(H, 1);
+  const Eigen::VectorXd lower = plant.lower().replicate(H, 1), upper = plant.upper().replicate(H, 1);
+
+  MpcPlan out;
+  std::string why;
+  ++out.rollouts;
+  if (!residuals(plant, targets, U_, r_, why) || !jacobian(plant, J_, why)) {
+    out.ok = false;
+    out.reason = "nlsq-mpc: the rollout of the warm start failed: " + why;
+  }
+  double mu = -1.0;  // damping, set from the first J^T J
+  for (; out.ok && out.iterations < options_.max_iterations; ++out.iterations) {
+    // Levenberg-Marquardt in the scaled inputs z = U / range: min 1/2 |r + J_z d|^2 + mu/2 d^T D d
+    const Eigen::MatrixXd Jz = J_ * range.asDiagonal();
+    const Eigen::MatrixXd A = Jz.transpose() * Jz;
+    const Eigen::VectorXd g = Jz.transpose() * r_;
+    const Eigen::VectorXd D = A.diagonal().cwiseMax(1e-12 * A.diagonal().maxCoeff() + 1e-300);
+    if (mu < 0.0) mu = kInitialDamping;
+    z_lower_ = (lower - U_).cwiseQuotient(range);
+    z_upper_ = (upper - U_).cwiseQuotient(range);
+    const double cost = 0.5 * r_.squaredNorm();
+    bool accepted = false;
+    double decrease = 0.0;
+    for (int trial = 0; trial < kTrialsPerIteration && !accepted; ++trial) {
+      Eigen::MatrixXd Am = A;
+      Am.diagonal() += mu * D;
+      const BoxQpResult qp =
+          solve_box_qp(Am, g, z_lower_, z_upper_, Eigen::VectorXd::Zero(n_u));
+      const double predicted = -(g.dot(qp.x) + 0.5 * qp.x.dot(A * qp.x));
+      if (!qp.ok || !(predicted > 0.0)) break;  // stationary in the box
+      U_trial_ = (U_ + qp.x.cwiseProduct(range)).cwiseMax(lower).cwiseMin(upper);
+      ++out.rollouts;
+      const bool ran = residuals(plant, targets, U_trial_, r_trial_, why);
+      const double rho = ran ? (cost - 0.5 * r_trial_.squaredNorm()) / predicted : -1.0;
+      if (rho > kAcceptRatio) {
+        accepted = true;
+        decrease = cost - 0.5 * r_trial_.squaredNorm();
+        U_ = U_trial_;
+        r_ = r_trial_;
+        mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
+      } else {
+        mu *= kDampingGrowth;
+      }
+    }
+    if (!accepted) break;  // no trial decreased the cost: a (local) minimum in the box
+    if (!jacobian(plant, J_, why)) {  // along the accepted rollout (the last one run)
+      out.ok = false;
+      out.reason = "nlsq-mpc: a step of the linearisation failed: " + why;
+      break;
+    }
+    if (decrease <= options_.function_tolerance * cost) {
+      ++out.iterations;
+      break;
+    }
+  }
+  out.cost = r_.squaredNorm();
+  for (int k = 0; k < H; ++k) plan_.row(k) = U_.segment(k * m, m).transpose();
+  out.u = plan_.row(0).transpose();
+  plant.restore(start_);
+  return out;
+}
+
+}  // namespace rodlab::solvers::control
