@@ -58,7 +58,7 @@ scene::ControlWeights read_weights(Checker& c, const Field& f) {
 }
 
 /// The task, by default track when a trajectory is given and reach otherwise; targets belong to
-/// reach and hold, a trajectory to track.
+/// reach and hold, a trajectory to track (which needs one: there is nothing to draw it from).
 void read_task(Checker& c, const Field& f, scene::Control& control) {
   const Field task = Checker::child(f, "task");
   static constexpr std::string_view kTasks[] = {"reach", "hold", "track"};
@@ -76,6 +76,8 @@ void read_task(Checker& c, const Field& f, scene::Control& control) {
             "task track follows a trajectory; targets are for reach and hold" + got);
   if (control.task != scene::ControlTask::track && trajectory.present())
     c.error(trajectory.key_mark, trajectory.path, "only task track follows a trajectory" + got);
+  if (control.task == scene::ControlTask::track && !targets.present() && !trajectory.present())
+    c.error(f.mark, trajectory.path, "is required by task track (the path to follow)");
 }
 
 /// The control steps: hold_steps counts the last of max_steps.
