@@ -13,8 +13,9 @@
 #include "rodlab/io/atomic_file.hpp"
 #include "rodlab/io/result_writer.hpp"
 
-// Reference: the layout of interface spec section 4 and "Control and learning". Numbers must read back bit for bit,
-// so every comparison of a number below is exact (BOOST_TEST with ==, no tolerance).
+// Reference: the layout of interface spec section 4 and "Control and learning". Numbers must
+// read back bit for bit, so every comparison of a number below is exact (BOOST_TEST with ==, no
+// tolerance).
 
 namespace fs = std::filesystem;
 using rodlab::lie::SE3;

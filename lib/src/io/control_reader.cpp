@@ -80,12 +80,15 @@ void read_task(Checker& c, const Field& f, scene::Control& control) {
     c.error(f.mark, trajectory.path, "is required by task track (the path to follow)");
 }
 
-/// The control steps: hold_steps counts the last of max_steps.
+/// The control steps: hold_steps counts the last of max_steps (compared only with a good
+/// max_steps, so a bad one is reported once).
 void read_steps(Checker& c, const Field& f, scene::Control& control) {
-  if (auto n = c.integer(c.child(f, "max_steps"), 1)) control.max_steps = *n;
+  const Field max = c.child(f, "max_steps");
+  const auto max_steps = c.integer(max, 1);
+  if (max_steps) control.max_steps = *max_steps;
   const Field hold = c.child(f, "hold_steps");
   if (auto n = c.integer(hold, 1)) {
-    if (*n > control.max_steps)
+    if ((max_steps || !max.present()) && *n > control.max_steps)
       c.error(hold, rodlab::format("must not exceed max_steps = {} (got {})", control.max_steps,
                                    describe(hold.node)));
     else
@@ -127,7 +130,8 @@ scene::Control read_control(Checker& c, const Field& f, const Field& actuators,
     return control;
   const auto given = c.exactly_one(f, {"targets", "trajectory"}, false);
   if (given == "targets") control.targets = read_targets(c, Checker::child(f, "targets"));
-  if (given == "trajectory") control.trajectory = read_trajectory(c, Checker::child(f, "trajectory"));
+  if (given == "trajectory")
+    control.trajectory = read_trajectory(c, Checker::child(f, "trajectory"));
   read_task(c, f, control);
 
   if (auto h = c.integer(c.child(f, "horizon"), 1)) control.horizon = *h;
