@@ -10,10 +10,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rodlab/io/atomic_file.hpp"
 #include "rodlab/io/result_writer.hpp"
 
-// Reference: the layout of interface spec section 4. Numbers must read back bit for bit,
-// so every comparison of a number below is exact (BOOST_TEST with ==, no tolerance).
+// Reference: the layout of interface spec section 4 and "Control and learning". Numbers must
+// read back bit for bit, so every comparison of a number below is exact (BOOST_TEST with ==, no
+// tolerance).
 
 namespace fs = std::filesystem;
 using rodlab::lie::SE3;
@@ -21,6 +23,7 @@ using rodlab::lie::SO3;
 using rodlab::lie::Vector3;
 using rodlab::lie::Vector6;
 using rodlab::result::CenterlineSample;
+using rodlab::result::ControlResult;
 using rodlab::result::DynamicResult;
 using rodlab::result::StaticResult;
 using Json = nlohmann::json;
@@ -78,6 +81,59 @@ DynamicResult dynamic_result(std::size_t outputs) {
   }
   for (int k = 0; k < 3; ++k) r.final_centerline.push_back(sample(k));
   return r;
+}
+
+/// Two episodes (3 and 2 control steps) of a four-cable robot, every number with many digits.
+ControlResult control_result() {
+  ControlResult r;
+  r.scene = "control-cable";
+  r.controller = "nlsq-mpc";
+  r.task = "reach";
+  r.scheme = "implicit-midpoint";
+  r.nodes = 20;
+  r.dt_control = 0.05 / 3.0;
+  r.horizon = 10;
+  r.converged = true;
+  r.seed = 42;
+  r.targets.drawn_from = rodlab::result::TargetSource::dynamic_workspace;
+  r.targets.points = {Vector3(0.02 / 3.0, -1.0 / 700.0, 0.099), Vector3(-1e-3 / 7.0, 0.01, 0.0985)};
+  for (std::size_t e = 0; e < 2; ++e) {
+    rodlab::result::ControlEpisode episode;
+    episode.target = r.targets.points[e];
+    episode.success = e == 0;
+    episode.steps = e == 0 ? 3 : 2;
+    episode.final_error = 1e-3 / (3.0 + e);
+    episode.min_error = 1e-4 / (7.0 + e);
+    episode.mean_error = 2e-3 / (9.0 + e);
+    r.episodes.push_back(episode);
+  }
+  r.episodes[1].reason = "target unreachable: inputs at their limits";
+  auto& s = r.series;
+  for (int k = 0; k < 5; ++k) {
+    const int episode = k < 3 ? 0 : 1;
+    const double t = ((k < 3 ? k : k - 3) + 1) * r.dt_control;
+    s.t.push_back(t);
+    s.u.push_back((Eigen::VectorXd(4) << 0.5 / 3.0 * k, 0.0, 1e-17 * k, 0.5).finished());
+    s.tip.emplace_back(t / 7.0, -t / 11.0, 0.1 - t * 1e-3);
+    s.target.push_back(r.targets.points[static_cast<std::size_t>(episode)]);
+    s.error.push_back((s.tip.back() - s.target.back()).norm());
+    s.solve_time_s.push_back(1e-3 * std::sqrt(k + 2.0));
+    s.iterations.push_back(3 * k + 1);
+    s.episode.push_back(episode);
+  }
+  r.summary.success_rate = 0.5;
+  r.summary.mean_error_pct_L = 100.0 / 3.0;
+  r.summary.real_time_ratio_mean = 0.4 / 3.0;
+  r.summary.real_time_ratio_max = 0.7 / 3.0;
+  r.summary.wall_time_s = 3.1 / 7.0;
+  return r;
+}
+
+std::vector<double> csv_row(const std::string& line) {
+  std::vector<double> values;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) values.push_back(std::stod(cell));
+  return values;
 }
 
 void check_vector(const Json& j, const Eigen::Ref<const Eigen::VectorXd>& v) {
@@ -322,4 +378,195 @@ BOOST_AUTO_TEST_CASE(another_extension_throws_and_writes_nothing) {
   BOOST_CHECK_THROW(rodlab::io::write_result(dir.path / "r.yaml", dynamic_result(1)),
                     std::invalid_argument);
   BOOST_TEST(fs::is_empty(dir.path));
+}
+
+// ---- control (rodlab.control-result/1)
+
+BOOST_AUTO_TEST_CASE(control_json_has_every_key_of_the_spec) {
+  const ControlResult r = control_result();
+  const std::string text = rodlab::io::to_json(r);
+  const Json j = Json::parse(text);
+  // the spec's keys in its order, then the extensions seed and targets
+  const std::vector<std::string> expected_keys{
+      "schema",  "scene",     "controller", "task",     "scheme", "nodes",  "dt_control",
+      "horizon", "converged", "reason",     "episodes", "series", "summary", "seed",
+      "targets"};
+  BOOST_TEST(keys(text) == expected_keys, boost::test_tools::per_element());
+  BOOST_TEST(j["schema"] == "rodlab.control-result/1");
+  BOOST_TEST(j["scene"] == "control-cable");
+  BOOST_TEST(j["controller"] == "nlsq-mpc");
+  BOOST_TEST(j["task"] == "reach");
+  BOOST_TEST(j["scheme"] == "implicit-midpoint");
+  BOOST_TEST(j["nodes"].is_number_integer());
+  BOOST_TEST(j["nodes"].get<int>() == 20);
+  BOOST_TEST(j["dt_control"].get<double>() == r.dt_control);
+  BOOST_TEST(j["horizon"].is_number_integer());
+  BOOST_TEST(j["horizon"].get<int>() == 10);
+  BOOST_TEST(j["converged"].get<bool>());
+  BOOST_TEST(j["reason"].is_null());  // present, and null when fine
+
+  BOOST_REQUIRE_EQUAL(j["episodes"].size(), 2u);
+  const std::vector<std::string> episode_keys{"target",    "success",    "steps", "final_error",
+                                              "min_error", "mean_error", "reason"};
+  BOOST_TEST(keys(nlohmann::ordered_json::parse(text)["episodes"][0].dump()) == episode_keys,
+             boost::test_tools::per_element());
+  for (std::size_t e = 0; e < 2; ++e) {
+    const Json& je = j["episodes"][e];
+    const auto& re = r.episodes[e];
+    check_vector(je["target"], re.target);
+    BOOST_TEST(je["success"].get<bool>() == re.success);
+    BOOST_TEST(je["steps"].is_number_integer());
+    BOOST_TEST(je["steps"].get<int>() == re.steps);
+    BOOST_TEST(je["final_error"].get<double>() == re.final_error);
+    BOOST_TEST(je["min_error"].get<double>() == re.min_error);
+    BOOST_TEST(je["mean_error"].get<double>() == re.mean_error);
+  }
+  BOOST_TEST(j["episodes"][0]["reason"].is_null());
+  BOOST_TEST(j["episodes"][1]["reason"] == "target unreachable: inputs at their limits");
+
+  const Json& s = j["series"];
+  const std::vector<std::string> series_keys{"t",     "u",            "tip",        "target",
+                                             "error", "solve_time_s", "iterations", "episode"};
+  BOOST_TEST(keys(nlohmann::ordered_json::parse(text)["series"].dump()) == series_keys,
+             boost::test_tools::per_element());
+  BOOST_TEST(s["t"].get<std::vector<double>>() == r.series.t, boost::test_tools::per_element());
+  BOOST_REQUIRE_EQUAL(s["u"].size(), 5u);
+  for (std::size_t k = 0; k < 5; ++k) {
+    check_vector(s["u"][k], r.series.u[k]);
+    check_vector(s["tip"][k], r.series.tip[k]);
+    check_vector(s["target"][k], r.series.target[k]);
+  }
+  BOOST_TEST(s["error"].get<std::vector<double>>() == r.series.error,
+             boost::test_tools::per_element());
+  BOOST_TEST(s["solve_time_s"].get<std::vector<double>>() == r.series.solve_time_s,
+             boost::test_tools::per_element());
+  BOOST_TEST(s["iterations"].get<std::vector<int>>() == r.series.iterations,
+             boost::test_tools::per_element());
+  BOOST_TEST(s["episode"].get<std::vector<int>>() == r.series.episode,
+             boost::test_tools::per_element());
+
+  const std::vector<std::string> summary_keys{"success_rate",         "mean_error_pct_L",
+                                              "real_time_ratio_mean", "real_time_ratio_max",
+                                              "wall_time_s",          "samples"};
+  BOOST_TEST(keys(nlohmann::ordered_json::parse(text)["summary"].dump()) == summary_keys,
+             boost::test_tools::per_element());
+  const Json& m = j["summary"];
+  BOOST_TEST(m["success_rate"].get<double>() == 0.5);
+  BOOST_TEST(m["mean_error_pct_L"].get<double>() == r.summary.mean_error_pct_L);
+  BOOST_TEST(m["real_time_ratio_mean"].get<double>() == r.summary.real_time_ratio_mean);
+  BOOST_TEST(m["real_time_ratio_max"].get<double>() == r.summary.real_time_ratio_max);
+  BOOST_TEST(m["wall_time_s"].get<double>() == r.summary.wall_time_s);
+  BOOST_TEST(m["samples"].is_null());  // not a learned policy
+
+  BOOST_TEST(j["seed"].get<unsigned>() == 42u);
+  BOOST_TEST(j["targets"]["drawn_from"] == "dynamic-workspace");
+  BOOST_REQUIRE_EQUAL(j["targets"]["points"].size(), 2u);
+  for (std::size_t e = 0; e < 2; ++e) check_vector(j["targets"]["points"][e], r.targets.points[e]);
+}
+
+BOOST_AUTO_TEST_CASE(control_json_reports_reasons_samples_and_target_sources) {
+  ControlResult r = control_result();
+  r.converged = false;
+  r.reason = "nlsq-mpc: Ceres failed at step 4";
+  r.summary.samples = 123456789012L;
+  r.targets.drawn_from = rodlab::result::TargetSource::static_workspace;
+  Json j = Json::parse(rodlab::io::to_json(r));
+  BOOST_TEST(!j["converged"].get<bool>());
+  BOOST_TEST(j["reason"] == "nlsq-mpc: Ceres failed at step 4");
+  BOOST_TEST(j["summary"]["samples"].get<long>() == 123456789012L);
+  BOOST_TEST(j["targets"]["drawn_from"] == "static-workspace");
+
+  r.reason.reset();  // a failure without a reason still says so
+  j = Json::parse(rodlab::io::to_json(r));
+  BOOST_TEST(j["reason"] == "unknown");
+
+  r.converged = true;  // solved, but a target was unreachable: exit 1 with a reason
+  r.reason = "1 of 2 targets unreachable";
+  r.targets.drawn_from = rodlab::result::TargetSource::trajectory;
+  j = Json::parse(rodlab::io::to_json(r));
+  BOOST_TEST(j["converged"].get<bool>());
+  BOOST_TEST(j["reason"] == "1 of 2 targets unreachable");
+  BOOST_TEST(j["targets"]["drawn_from"] == "trajectory");
+  r.targets.drawn_from = rodlab::result::TargetSource::scene;
+  BOOST_TEST(Json::parse(rodlab::io::to_json(r))["targets"]["drawn_from"] == "scene");
+}
+
+BOOST_AUTO_TEST_CASE(control_csv_has_one_row_per_control_step) {
+  const ControlResult r = control_result();
+  const auto rows = lines(rodlab::io::to_csv(r));
+  BOOST_REQUIRE_EQUAL(rows.size(), 6u);
+  BOOST_TEST(rows[0] ==
+             "t,u_0,u_1,u_2,u_3,tip_x,tip_y,tip_z,target_x,target_y,target_z,error,solve_time_s,"
+             "iterations,episode");
+  for (std::size_t k = 0; k < 5; ++k) {
+    const auto& s = r.series;
+    std::vector<double> expected{s.t[k]};
+    expected.insert(expected.end(), s.u[k].data(), s.u[k].data() + 4);
+    expected.insert(expected.end(), s.tip[k].data(), s.tip[k].data() + 3);
+    expected.insert(expected.end(), s.target[k].data(), s.target[k].data() + 3);
+    expected.insert(expected.end(), {s.error[k], s.solve_time_s[k], double(s.iterations[k]),
+                                     double(s.episode[k])});
+    BOOST_TEST(csv_row(rows[k + 1]) == expected, boost::test_tools::per_element());
+  }
+  // no steps: the header without inputs
+  ControlResult empty = r;
+  empty.series = {};
+  BOOST_TEST(rodlab::io::to_csv(empty) ==
+             "t,tip_x,tip_y,tip_z,target_x,target_y,target_z,error,solve_time_s,iterations,"
+             "episode\n");
+}
+
+BOOST_AUTO_TEST_CASE(control_writers_reject_inconsistent_series) {
+  const auto rejected = [](const ControlResult& r) {
+    BOOST_CHECK_THROW(rodlab::io::to_json(r), std::invalid_argument);
+    BOOST_CHECK_THROW(rodlab::io::to_csv(r), std::invalid_argument);
+  };
+  ControlResult r = control_result();
+  r.series.iterations.pop_back();
+  rejected(r);
+  r = control_result();
+  r.series.tip.pop_back();
+  rejected(r);
+  r = control_result();
+  r.series.u[3] = Eigen::VectorXd::Zero(3);  // three inputs where the others have four
+  rejected(r);
+  r = control_result();
+  r.series.episode[4] = 2;  // only episodes 0 and 1 exist
+  rejected(r);
+  r.series.episode[4] = -1;
+  rejected(r);
+}
+
+BOOST_AUTO_TEST_CASE(control_result_files_round_trip_and_are_written_atomically) {
+  TempDir dir;
+  ControlResult r = control_result();
+  rodlab::io::write_result(dir.path / "c.json", r);
+  rodlab::io::write_result(dir.path / "c.csv", r);
+  BOOST_TEST(read(dir.path / "c.json") == rodlab::io::to_json(r));
+  BOOST_TEST(read(dir.path / "c.csv") == rodlab::io::to_csv(r));
+  const Json j = Json::parse(read(dir.path / "c.json"));
+  BOOST_TEST(j["schema"] == "rodlab.control-result/1");
+  BOOST_TEST(j["series"]["error"].get<std::vector<double>>() == r.series.error,
+             boost::test_tools::per_element());
+  BOOST_TEST(lines(read(dir.path / "c.csv")).size() == 6u);
+
+  // overwriting replaces the whole file; an inconsistent result writes nothing and keeps it
+  r.series = {};
+  r.episodes.clear();
+  rodlab::io::write_result(dir.path / "c.json", r);
+  BOOST_TEST(read(dir.path / "c.json") == rodlab::io::to_json(r));
+  const std::string kept = read(dir.path / "c.json");
+  r.series.t.push_back(0.05);
+  BOOST_CHECK_THROW(rodlab::io::write_result(dir.path / "c.json", r), std::invalid_argument);
+  BOOST_TEST(read(dir.path / "c.json") == kept);
+  // no temporary files left: only the two results
+  BOOST_TEST(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()) == 2);
+
+  // a missing directory: WriteError naming the path, nothing created
+  BOOST_CHECK_THROW(rodlab::io::write_result(dir.path / "missing" / "c.json", control_result()),
+                    rodlab::io::WriteError);
+  BOOST_CHECK_THROW(rodlab::io::write_result(dir.path / "c.yaml", control_result()),
+                    std::invalid_argument);
+  BOOST_TEST(!fs::exists(dir.path / "missing"));
+  BOOST_TEST(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()) == 2);
 }

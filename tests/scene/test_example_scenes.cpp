@@ -70,7 +70,7 @@ BOOST_AUTO_TEST_CASE(the_example_scenes_are_there) {
   for (const char* name :
        {"cantilever-gravity.yaml", "cantilever-gravity-kirchhoff.yaml", "fixed-ends.yaml",
         "cable-driven.yaml", "viscous-cantilever.yaml", "cable-steps.yaml", "fluidic-chamber.yaml",
-        "muscle.yaml", "tip-moment-circle.yaml"})
+        "muscle.yaml", "tip-moment-circle.yaml", "control-cable.yaml"})
     BOOST_TEST((std::find(files.begin(), files.end(), name) != files.end()), name);
 }
 
@@ -125,4 +125,31 @@ BOOST_AUTO_TEST_CASE(tip_moment_closes_the_rod_into_a_circle) {
   BOOST_TEST(M * s.rod.length / (s.rod.material.E * I) == 2.0 * std::numbers::pi,
              boost::test_tools::tolerance(1e-14));
   BOOST_TEST((w.frame == scene::Frame::body));
+}
+
+BOOST_AUTO_TEST_CASE(control_cable_is_the_thesis_control_robot_tracking_a_centimetre_circle) {
+  // Chapter 4: the Table 2.1 rod, alpha = 300 Pa s, four cables at 4 mm within [0, 0.5] N,
+  // slack at the start; N = 20, implicit-midpoint; the middle circle (radius 1 cm) of 0.5/1/1.5.
+  const auto s = load("control-cable.yaml");
+  check_table_2_1(s);
+  BOOST_TEST(s.rod.material.viscosity == 300.0);
+  BOOST_TEST(!s.loads.gravity.has_value());
+  BOOST_TEST_REQUIRE(s.actuators.size() == 4u);
+  for (const auto& a : s.actuators) {
+    const auto& c = std::get<scene::Cable>(a);
+    BOOST_TEST(c.offset.at(0).norm() == 0.004, boost::test_tools::tolerance(1e-15));
+    BOOST_TEST(c.tension->at(0) == 0.0);
+    BOOST_TEST((*c.limits == std::pair<double, double>(0.0, 0.5)));
+  }
+  BOOST_TEST(s.solver.nodes == 20);
+  BOOST_TEST(*s.dynamics->scheme == "implicit-midpoint");
+  BOOST_TEST_REQUIRE(s.control.has_value());
+  BOOST_TEST((s.control->task == scene::ControlTask::track));
+  const auto& circle = s.control->trajectory->circle;
+  BOOST_TEST(circle.radius == 0.01);
+  // centred on the axis, below the rest tip (0.1 m) by less than the 1.5 cm circle's drop
+  BOOST_TEST((circle.center.head<2>() == Eigen::Vector2d::Zero()));
+  BOOST_TEST(circle.center.z() < s.rod.length);
+  BOOST_TEST(circle.center.z() > 0.098);
+  BOOST_TEST((circle.normal == scene::Vector3::UnitZ()));
 }

@@ -316,3 +316,21 @@ BOOST_AUTO_TEST_CASE(duplicate_key_in_an_overridden_value) {
   BOOST_TEST(d[0].to_string() ==
              "--set rod.material={E: 1, G: 1, rho: 1, G: 2}: rod.material.G: duplicate key");
 }
+
+BOOST_AUTO_TEST_CASE(bad_control_override_is_reported_against_the_override) {
+  // kGood's cable has no limits: control needs them, and says so at the cable in the file
+  auto d = rejection(kGood, overrides({"control.horizon=0"}));
+  BOOST_TEST_REQUIRE(d.size() == 2u);
+  BOOST_TEST(d[0].to_string() ==
+             "scene.yaml:8:12: actuators.0.cable.limits: is required by control (the bounds of "
+             "the input the controller sets)");
+  BOOST_TEST(d[1].to_string() ==
+             "--set control.horizon=0: control.horizon: must be >= 1 (got 0)");
+
+  d = rejection(kGood, overrides({"actuators.0.cable.limits=[0, 1]",
+                                  "control={task: track, targets: [[0, 0, 0.1]]}"}));
+  BOOST_TEST_REQUIRE(d.size() == 1u);
+  BOOST_TEST(d[0].source == "--set control={task: track, targets: [[0, 0, 0.1]]}");
+  BOOST_TEST(d[0].field == "control.targets");
+  BOOST_TEST(d[0].message.find("task track follows a trajectory") != std::string::npos);
+}

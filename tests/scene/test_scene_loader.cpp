@@ -126,7 +126,8 @@ BOOST_AUTO_TEST_CASE(every_field_round_trips) {
     BOOST_TEST((c.displacement->kind() == scene::ScalarSchedule::Kind::steps));
     BOOST_TEST(c.displacement->at(1.5) == 0.001);
     BOOST_TEST(!c.span.has_value());
-    BOOST_TEST(!c.limits.has_value());
+    BOOST_TEST_REQUIRE(c.limits.has_value());
+    BOOST_TEST(c.limits->second == 0.003);
   }
   {
     const auto& f = as<scene::Fluidic>(s.actuators[2]);
@@ -149,6 +150,8 @@ BOOST_AUTO_TEST_CASE(every_field_round_trips) {
     BOOST_TEST_REQUIRE(f.span.has_value());
     BOOST_TEST(f.span->s0 == 0.05);
     BOOST_TEST(f.span->s1 == 0.2);
+    BOOST_TEST_REQUIRE(f.limits.has_value());
+    BOOST_TEST(f.limits->second == 2.0e-7);
   }
   {
     const auto& m = as<scene::Muscle>(s.actuators[4]);
@@ -181,6 +184,27 @@ BOOST_AUTO_TEST_CASE(every_field_round_trips) {
   BOOST_TEST(s.solver.nodes == 40);
   BOOST_TEST(s.solver.tol == 1.0e-8);
   BOOST_TEST(s.solver.max_iterations == 30);
+
+  BOOST_TEST_REQUIRE(s.control.has_value());
+  const scene::Control& c = *s.control;
+  BOOST_TEST((c.task == scene::ControlTask::track));
+  BOOST_TEST(c.targets.empty());
+  BOOST_TEST_REQUIRE(c.trajectory.has_value());
+  const scene::CircleTrajectory& circle = c.trajectory->circle;
+  BOOST_TEST((circle.center == Vector3(0.1, 0.2, 0.49)));
+  BOOST_TEST(circle.radius == 0.02);
+  BOOST_TEST(circle.period == 3.0);
+  BOOST_TEST(circle.laps == 2.5);
+  BOOST_TEST((circle.normal == Vector3(0, 1, 0)));  // [0, 2, 0] normalised
+  BOOST_TEST(c.horizon == 5);
+  BOOST_TEST(c.dt_control == 0.02);
+  BOOST_TEST(c.threshold == 0.03);
+  BOOST_TEST(c.max_steps == 50);
+  BOOST_TEST(c.hold_steps == 5);
+  BOOST_TEST(c.weights.input_rate == 0.01);
+  BOOST_TEST(c.weights.input == 0.001);
+  BOOST_TEST(c.weights.terminal == 10.0);
+  BOOST_TEST(c.seed == 7u);
 }
 
 BOOST_AUTO_TEST_CASE(clamped_tip_rectangle_and_auto_dt) {
@@ -226,6 +250,7 @@ BOOST_AUTO_TEST_CASE(defaults) {
   BOOST_TEST(s.solver.nodes == 24);
   BOOST_TEST(s.solver.tol == 1e-10);
   BOOST_TEST(s.solver.max_iterations == 50);
+  BOOST_TEST(!s.control.has_value());
 }
 
 BOOST_AUTO_TEST_CASE(defaults_inside_optional_sections) {
@@ -244,6 +269,7 @@ BOOST_AUTO_TEST_CASE(defaults_inside_optional_sections) {
   BOOST_TEST(m.input.at(0) == 2.0);
   BOOST_TEST(m.material.G == 1.0e7 / 3.0, boost::test_tools::tolerance(1e-15));
   BOOST_TEST(!m.span.has_value());
+  BOOST_TEST(!m.limits.has_value());
   BOOST_TEST_REQUIRE(s.dynamics.has_value());
   BOOST_TEST(!s.dynamics->t_end.has_value());
   BOOST_TEST(!s.dynamics->dt.has_value());
@@ -258,6 +284,81 @@ BOOST_AUTO_TEST_CASE(empty_values_read_as_empty_sections) {
   BOOST_TEST(!s.tip_clamped());
   BOOST_TEST(s.actuators.empty());
   BOOST_TEST(!s.loads.gravity.has_value());
+}
+
+// ---- control
+
+const std::string kControlled =
+    "actuators:\n  - cable: {offset: [0.004, 0], tension: 0, limits: [0, 0.5]}\n"
+    "  - muscle: {offset: [0, 0], section: {shape: circle, diameter: 0.001},\n"
+    "      material: {E: 1.0e7, poisson: 0.5, rho: 1000}, input: 0, law: {gain: 0.1},"
+    " limits: [-1, 2]}\n";
+
+BOOST_AUTO_TEST_CASE(control_defaults) {
+  // an empty section: every default of scene::Control (docs/scene-reference.md "control")
+  const scene::Scene s = with(kControlled + "control:\n");
+  BOOST_TEST_REQUIRE(s.control.has_value());
+  const scene::Control& c = *s.control;
+  BOOST_TEST((c.task == scene::ControlTask::reach));
+  BOOST_TEST(c.targets.empty());
+  BOOST_TEST(!c.trajectory.has_value());
+  BOOST_TEST(c.horizon == 10);
+  BOOST_TEST(c.dt_control == 0.05);
+  BOOST_TEST(c.threshold == 0.05);
+  BOOST_TEST(c.max_steps == 100);
+  BOOST_TEST(c.hold_steps == 10);
+  BOOST_TEST(c.weights.input_rate == 1e-3);
+  BOOST_TEST(c.weights.input == 0.0);
+  BOOST_TEST(c.weights.terminal == 1.0);
+  BOOST_TEST(c.seed == 1u);
+  BOOST_TEST(c.target_count == 10);
+
+  // a trajectory without a task is tracked; a circle's laps and normal have defaults
+  const scene::Scene t = with(kControlled +
+      "control: {trajectory: {circle: {center: [0, 0, 0.09], radius: 0.01, period: 4}}}\n");
+  BOOST_TEST((t.control->task == scene::ControlTask::track));
+  BOOST_TEST(t.control->trajectory->circle.laps == 1.0);
+  BOOST_TEST((t.control->trajectory->circle.normal == Vector3::UnitZ()));
+}
+
+BOOST_AUTO_TEST_CASE(control_targets_and_drawn_targets) {
+  scene::Scene s = with(kControlled +
+      "control:\n  task: hold\n  targets: [[0.02, 0.0, 0.09], [0.0, -0.015, 0.095]]\n");
+  BOOST_TEST((s.control->task == scene::ControlTask::hold));
+  BOOST_TEST_REQUIRE(s.control->targets.size() == 2u);
+  BOOST_TEST((s.control->targets[0] == Vector3(0.02, 0.0, 0.09)));
+  BOOST_TEST((s.control->targets[1] == Vector3(0.0, -0.015, 0.095)));
+  BOOST_TEST(!s.control->trajectory.has_value());
+
+  s = with(kControlled + "control: {task: reach, target_count: 25, seed: 0}\n");
+  BOOST_TEST(s.control->targets.empty());
+  BOOST_TEST(s.control->target_count == 25);
+  BOOST_TEST(s.control->seed == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(overrides_reach_the_control_fields) {
+  // the section is created by the overrides when the file has none
+  const scene::Scene s =
+      with(kControlled, {"control.horizon=5", "control.dt_control=0.1", "control.task=hold",
+                         "control.weights.input_rate=0", "control.targets=[[0.01, 0, 0.099]]",
+                         "control.hold_steps=100"});
+  BOOST_TEST_REQUIRE(s.control.has_value());
+  BOOST_TEST(s.control->horizon == 5);
+  BOOST_TEST(s.control->dt_control == 0.1);
+  BOOST_TEST((s.control->task == scene::ControlTask::hold));
+  BOOST_TEST(s.control->weights.input_rate == 0.0);
+  BOOST_TEST(s.control->weights.terminal == 1.0);
+  BOOST_TEST_REQUIRE(s.control->targets.size() == 1u);
+  BOOST_TEST((s.control->targets[0] == Vector3(0.01, 0, 0.099)));
+  BOOST_TEST(s.control->hold_steps == 100);
+
+  // the full scene's circle, changed field by field
+  std::vector<Override> o{io::parse_override("control.trajectory.circle.radius=0.005"),
+                          io::parse_override("control.trajectory.circle.normal=[1, 0, 0]")};
+  const scene::Scene f = load_scene((kGoodDir / "full.yaml").string(), o);
+  BOOST_TEST(f.control->trajectory->circle.radius == 0.005);
+  BOOST_TEST((f.control->trajectory->circle.normal == Vector3::UnitX()));
+  BOOST_TEST(f.control->trajectory->circle.period == 3.0);
 }
 
 BOOST_AUTO_TEST_CASE(rotation_from_axis_angle_is_the_exponential) {

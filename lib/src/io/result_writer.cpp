@@ -65,11 +65,17 @@ void append_row(std::string& out, const std::vector<double>& row) {
   out += '\n';
 }
 
+/// Throws unless a series has one value per row: "dynamic result: energy.strain has 2 values
+/// for 3 output times".
+void check_length(std::size_t size, const char* result, const char* name, std::size_t rows,
+                  const char* per) {
+  RODLAB_THROW_UNLESS(size == rows, "{} result: {} has {} values for {} {}", result, name, size,
+                      rows, per);
+}
+
 const std::vector<double>& checked_series(const std::vector<double>& series, const char* name,
                                           std::size_t expected) {
-  RODLAB_THROW_UNLESS(series.size() == expected,
-                      "dynamic result: {} has {} values for {} output times", name, series.size(),
-                      expected);
+  check_length(series.size(), "dynamic", name, expected, "output times");
   return series;
 }
 
@@ -160,9 +166,7 @@ std::string to_csv(const result::StaticResult& r) {
 
 std::string to_csv(const result::DynamicResult& r) {
   const std::size_t n = r.t.size();
-  RODLAB_THROW_UNLESS(r.tip_position.size() == n,
-                      "dynamic result: tip_position has {} values for {} output times",
-                      r.tip_position.size(), n);
+  check_length(r.tip_position.size(), "dynamic", "tip_position", n, "output times");
   const auto& e = r.energy;
   const std::vector<const std::vector<double>*> columns{
       &checked_series(e.kinetic, "energy.kinetic", n),
@@ -240,6 +244,140 @@ std::string to_csv(const result::WorkspaceResult& r) {
 }
 
 void write_result(const std::filesystem::path& path, const result::WorkspaceResult& result) {
+  write_result_impl(path, result);
+}
+
+}  // namespace rodlab::io
+
+namespace rodlab::io {
+namespace {
+
+const char* target_source_name(result::TargetSource source) {
+  switch (source) {
+    case result::TargetSource::scene:
+      return "scene";
+    case result::TargetSource::trajectory:
+      return "trajectory";
+    case result::TargetSource::static_workspace:
+      return "static-workspace";
+    case result::TargetSource::dynamic_workspace:
+      return "dynamic-workspace";
+  }
+  return "unknown";
+}
+
+Json text_or_null(const std::optional<std::string>& text) {
+  return text ? Json(*text) : Json(nullptr);
+}
+
+Json points_json(const std::vector<lie::Vector3>& points) {
+  Json out = Json::array();
+  for (const auto& p : points) out.push_back(vector_json(p));
+  return out;
+}
+
+/// One value per control step in every series, inputs of one size, episodes that exist.
+void check_control_series(const result::ControlResult& r) {
+  const auto& s = r.series;
+  const std::size_t n = s.t.size();
+  const auto check = [&](std::size_t size, const char* name) {
+    check_length(size, "control", name, n, "control steps");
+  };
+  check(s.u.size(), "series.u");
+  check(s.tip.size(), "series.tip");
+  check(s.target.size(), "series.target");
+  check(s.error.size(), "series.error");
+  check(s.solve_time_s.size(), "series.solve_time_s");
+  check(s.iterations.size(), "series.iterations");
+  check(s.episode.size(), "series.episode");
+  for (std::size_t k = 0; k < n; ++k) {
+    RODLAB_THROW_UNLESS(s.u[k].size() == s.u.front().size(),
+                        "control result: series.u[{}] has {} inputs, series.u[0] {}", k,
+                        s.u[k].size(), s.u.front().size());
+    RODLAB_THROW_UNLESS(s.episode[k] >= 0 && static_cast<std::size_t>(s.episode[k]) <
+                                                 r.episodes.size(),
+                        "control result: series.episode[{}] = {} is not one of the {} episodes",
+                        k, s.episode[k], r.episodes.size());
+  }
+}
+
+Json episodes_json(const std::vector<result::ControlEpisode>& episodes) {
+  Json out = Json::array();
+  for (const auto& e : episodes) {
+    out.push_back(Json{{"target", vector_json(e.target)},
+                       {"success", e.success},
+                       {"steps", e.steps},
+                       {"final_error", e.final_error},
+                       {"min_error", e.min_error},
+                       {"mean_error", e.mean_error},
+                       {"reason", text_or_null(e.reason)}});
+  }
+  return out;
+}
+
+Json control_series_json(const result::ControlSeries& s) {
+  Json u = Json::array();
+  for (const auto& inputs : s.u) u.push_back(vector_json(inputs));
+  return Json{{"t", s.t},
+              {"u", u},
+              {"tip", points_json(s.tip)},
+              {"target", points_json(s.target)},
+              {"error", s.error},
+              {"solve_time_s", s.solve_time_s},
+              {"iterations", s.iterations},
+              {"episode", s.episode}};
+}
+
+}  // namespace
+
+std::string to_json(const result::ControlResult& r) {
+  check_control_series(r);
+  Json json{{"schema", kControlResultSchema},
+            {"scene", r.scene},
+            {"controller", r.controller},
+            {"task", r.task},
+            {"scheme", r.scheme},
+            {"nodes", r.nodes},
+            {"dt_control", r.dt_control},
+            {"horizon", r.horizon},
+            {"converged", r.converged}};
+  json["reason"] = (r.reason || r.converged) ? text_or_null(r.reason) : Json("unknown");
+  json["episodes"] = episodes_json(r.episodes);
+  json["series"] = control_series_json(r.series);
+  const auto& m = r.summary;
+  json["summary"] = Json{{"success_rate", m.success_rate},
+                         {"mean_error_pct_L", m.mean_error_pct_L},
+                         {"real_time_ratio_mean", m.real_time_ratio_mean},
+                         {"real_time_ratio_max", m.real_time_ratio_max},
+                         {"wall_time_s", m.wall_time_s},
+                         {"samples", m.samples ? Json(*m.samples) : Json(nullptr)}};
+  json["seed"] = r.seed;
+  json["targets"] = Json{{"drawn_from", target_source_name(r.targets.drawn_from)},
+                         {"points", points_json(r.targets.points)}};
+  return dump(json);
+}
+
+std::string to_csv(const result::ControlResult& r) {
+  check_control_series(r);
+  const auto& s = r.series;
+  const Eigen::Index inputs = s.u.empty() ? 0 : s.u.front().size();
+  std::string out = "t,";
+  for (Eigen::Index i = 0; i < inputs; ++i) out += rodlab::format("u_{},", i);
+  out += "tip_x,tip_y,tip_z,target_x,target_y,target_z,error,solve_time_s,iterations,episode\n";
+  std::vector<double> row;
+  for (std::size_t k = 0; k < s.t.size(); ++k) {
+    row.assign({s.t[k]});
+    row.insert(row.end(), s.u[k].data(), s.u[k].data() + inputs);
+    row.insert(row.end(), s.tip[k].data(), s.tip[k].data() + 3);
+    row.insert(row.end(), s.target[k].data(), s.target[k].data() + 3);
+    row.insert(row.end(), {s.error[k], s.solve_time_s[k], static_cast<double>(s.iterations[k]),
+                           static_cast<double>(s.episode[k])});
+    append_row(out, row);
+  }
+  return out;
+}
+
+void write_result(const std::filesystem::path& path, const result::ControlResult& result) {
   write_result_impl(path, result);
 }
 

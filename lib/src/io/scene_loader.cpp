@@ -57,7 +57,8 @@ scene::Scene read_scene(detail::Checker& c, const detail::Field& root,
   using detail::Field;
   scene::Scene s;
   c.keys(root,
-         {"schema", "name", "rod", "base", "tip", "loads", "actuators", "dynamics", "solver"});
+         {"schema", "name", "rod", "base", "tip", "loads", "actuators", "dynamics", "solver",
+          "control"});
 
   const Field schema = c.require(root, "schema");
   if (auto text = c.text(schema); text && *text != scene::kSceneSchema)
@@ -80,10 +81,13 @@ scene::Scene read_scene(detail::Checker& c, const detail::Field& root,
   s.loads = detail::read_loads(c, Checker::child(root, "loads"));
   const std::optional<double> length =
       s.rod.length > 0.0 ? std::optional<double>(s.rod.length) : std::nullopt;
-  s.actuators = detail::read_actuators(c, Checker::child(root, "actuators"), length);
+  const Field actuators = Checker::child(root, "actuators");
+  s.actuators = detail::read_actuators(c, actuators, length);
   if (const Field dynamics = Checker::child(root, "dynamics"); dynamics.present())
     s.dynamics = detail::read_dynamics(c, dynamics);
   s.solver = detail::read_solver(c, Checker::child(root, "solver"));
+  if (const Field control = Checker::child(root, "control"); control.present())
+    s.control = detail::read_control(c, control, actuators, s.actuators);
 
   if (c.error_count() == 0) {
     // Safety net: the rod model checks its own arguments; nothing above should let it throw.

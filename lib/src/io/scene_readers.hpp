@@ -46,6 +46,12 @@ std::vector<scene::Actuator> read_actuators(Checker& c, const Field& f,
 scene::Dynamics read_dynamics(Checker& c, const Field& f);
 scene::Solver read_solver(Checker& c, const Field& f);
 
+// control_reader.cpp
+/// The control section; `actuators` is the scene's actuators field and `read` what was read of
+/// it: control needs every actuator to have limits (the controller's bounds and input scale).
+scene::Control read_control(Checker& c, const Field& f, const Field& actuators,
+                            const std::vector<scene::Actuator>& read);
+
 /// A scalar input: a number in `range` or a schedule of them.
 inline std::optional<scene::ScalarSchedule> read_scalar_input(Checker& c, const Field& f,
                                                               const Range& range) {

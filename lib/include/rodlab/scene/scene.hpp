@@ -143,6 +143,46 @@ struct Solver {
   std::optional<std::string> grid;
 };
 
+enum class ControlTask { reach, hold, track };  // YAML: reach | hold | track
+
+/// A circle traced at constant speed (control.trajectory.circle); evaluated by
+/// rodlab/scene/trajectory.hpp.
+struct CircleTrajectory {
+  Vector3 center = Vector3::Zero();   ///< [m], world frame
+  double radius = 0.0;                ///< [m], > 0
+  double period = 0.0;                ///< [s] per lap, > 0
+  double laps = 1.0;                  ///< > 0; fractional laps stop part-way round
+  Vector3 normal = Vector3::UnitZ();  ///< unit normal of the circle's plane (normalised on load)
+};
+
+/// control.trajectory: the path a `track` task follows.
+struct Trajectory {
+  CircleTrajectory circle;
+};
+
+/// control.weights: the dimensionless weights of the controllers' cost (docs/scene-reference.md
+/// "control"): positions are scaled by the rod length L, inputs by their limits' range.
+struct ControlWeights {
+  double input_rate = 1e-3;  ///< on ||(u_k - u_k-1) / (u_max - u_min)||^2
+  double input = 0.0;        ///< on ||(u_k - u_min) / (u_max - u_min)||^2
+  double terminal = 1.0;     ///< on the last step's ||p - p_des||^2 / L^2 (stage steps weigh 1)
+};
+
+/// control: the task and settings of `rodlab control`; command-line options win.
+struct Control {
+  ControlTask task = ControlTask::reach;  ///< default: track with a trajectory, else reach
+  std::vector<Vector3> targets;           ///< [m], world frame; empty: drawn from the workspace
+  std::optional<Trajectory> trajectory;   ///< at most one of targets and trajectory
+  int horizon = 10;                       ///< control steps predicted
+  double dt_control = 0.05;               ///< [s] between control updates
+  double threshold = 0.05;                ///< success: tip error below threshold * L
+  int max_steps = 100;                    ///< control steps per reach or hold episode
+  int hold_steps = 10;                    ///< hold: error below the threshold over the last ones
+  ControlWeights weights;
+  unsigned seed = 1;                      ///< for drawing targets
+  int target_count = 10;                  ///< targets drawn when none are listed
+};
+
 struct Scene {
   std::string schema = kSceneSchema;
   std::string name;
@@ -153,6 +193,7 @@ struct Scene {
   std::vector<Actuator> actuators;
   std::optional<Dynamics> dynamics;
   Solver solver;
+  std::optional<Control> control;
   std::string source_path;  ///< the file it was read from
 
   bool tip_clamped() const { return std::holds_alternative<ClampedTip>(tip); }
