@@ -30,6 +30,7 @@ struct Command {
 
 // One per file: cmd_<name>.cpp.
 const Command& check_command();
+const Command& control_command();
 const Command& static_command();
 const Command& dynamic_command();
 const Command& schemes_command();

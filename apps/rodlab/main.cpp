@@ -19,10 +19,10 @@
 namespace rodlab::cli {
 namespace {
 
-const std::array<const Command*, 7>& command_table() {
-  static const std::array<const Command*, 7> table{
-      &check_command(), &static_command(),   &dynamic_command(),  &schemes_command(),
-      &study_command(), &validate_command(), &workspace_command()};
+const std::array<const Command*, 8>& command_table() {
+  static const std::array<const Command*, 8> table{
+      &check_command(),  &static_command(), &dynamic_command(),  &control_command(),
+      &schemes_command(), &study_command(), &validate_command(), &workspace_command()};
   return table;
 }
 

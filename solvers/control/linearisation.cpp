@@ -40,6 +40,7 @@ dynamics::StepStatus Linearisation::perturbed(Plant& plant, double h,
                                               const Eigen::Ref<const Eigen::VectorXd>& du,
                                               Eigen::VectorXd& x, Vector3& tip) {
   plant.restore(start_);
+  if (after_ != nullptr) plant.warm_start_from(*after_);
   if (h != 0.0) {
     step_ = h * dx;
     plant.add_state(std::span<const double>(step_.data(), step_.size()));
@@ -63,8 +64,11 @@ dynamics::StepStatus Linearisation::directional(Plant& plant,
                                                 const Eigen::Ref<const Eigen::VectorXd>& dx,
                                                 const Eigen::Ref<const Eigen::VectorXd>& du,
                                                 StepDerivative& out, const Eigen::VectorXd& x_next,
-                                                const Vector3& tip_next) {
-  return difference(plant, dx, du, out, &x_next, &tip_next);
+                                                const Vector3& tip_next, const PlantSnapshot& after) {
+  after_ = &after;
+  const dynamics::StepStatus status = difference(plant, dx, du, out, &x_next, &tip_next);
+  after_ = nullptr;
+  return status;
 }
 
 dynamics::StepStatus Linearisation::difference(Plant& plant,

@@ -22,22 +22,27 @@ NlsqMpc::NlsqMpc(const Plant& plant, const MpcOptions& options)
     : options_(options), lin_(plant, LinearisationOptions{1e-5, false}), start_(plant.snapshot()) {
   RODLAB_THROW_UNLESS(options.horizon >= 1, "nlsq-mpc: horizon must be >= 1 (got {})",
                       options.horizon);
-  RODLAB_THROW_UNLESS(options.input_rate_weight >= 0.0 && options.input_weight >= 0.0,
+  RODLAB_THROW_UNLESS(options.input_rate_weight >= 0.0 && options.input_weight >= 0.0 &&
+                          options.terminal_weight >= 0.0,
                       "nlsq-mpc: weights must be >= 0");
   RODLAB_THROW_UNLESS(options.max_iterations >= 1, "nlsq-mpc: max_iterations must be >= 1");
   const int H = options.horizon, m = plant.input_count(), n = plant.state_size();
-  for (int k = 0; k < H; ++k) states_.push_back(plant.snapshot());
+  for (int k = 0; k <= H; ++k) states_.push_back(plant.snapshot());
   xs_.assign(H, Eigen::VectorXd(n));
   tips_.resize(H);
   plan_.resize(H, m);
-  for (int k = 0; k < H; ++k) plan_.row(k) = plant.input().transpose();
-  applied_ = plant.input();
+  reset(plant);
   range_ = (plant.upper() - plant.lower()).cwiseMax(1e-300);
   dx_.resize(n);
   du_.resize(m);
   zero_u_ = Eigen::VectorXd::Zero(m);
   zero_x_ = Eigen::VectorXd::Zero(n);
   d_.dx.resize(n);
+}
+
+void NlsqMpc::reset(const Plant& plant) {
+  for (int k = 0; k < options_.horizon; ++k) plan_.row(k) = plant.input().transpose();
+  applied_ = plant.input();
 }
 
 bool NlsqMpc::residuals(Plant& plant, std::span<const Vector3> targets, const Eigen::VectorXd& U,
@@ -57,7 +62,8 @@ bool NlsqMpc::residuals(Plant& plant, std::span<const Vector3> targets, const Ei
     }
     plant.read_state(std::span<double>(xs_[k].data(), xs_[k].size()));
     tips_[k] = plant.tip();
-    r.segment<3>(3 * k) = (tips_[k] - targets[k]) / L;
+    if (k + 1 == H) plant.save(states_[H]);  // (the others are the next steps' starts)
+    r.segment<3>(3 * k) = weight(k) * (tips_[k] - targets[k]) / L;
   }
   const double rate = std::sqrt(options_.input_rate_weight);
   const double w = std::sqrt(options_.input_weight);
@@ -82,13 +88,15 @@ bool NlsqMpc::jacobian(Plant& plant, Eigen::MatrixXd& J, std::string& reason) {
       du_[i] = range_[i];
       for (int k = j; k < H; ++k) {  // u_j,i acts on p_(j+1) and propagates to p_H
         plant.restore(states_[k]);   // x_k under u_k (the rollout)
-        const auto status = k == j ? lin_.directional(plant, zero_x_, du_, d_, xs_[k], tips_[k])
-                                   : lin_.directional(plant, dx_, zero_u_, d_, xs_[k], tips_[k]);
+        const PlantSnapshot& after = states_[k + 1];
+        const auto status =
+            k == j ? lin_.directional(plant, zero_x_, du_, d_, xs_[k], tips_[k], after)
+                   : lin_.directional(plant, dx_, zero_u_, d_, xs_[k], tips_[k], after);
         if (!status.ok) {
           reason = status.reason;
           return false;
         }
-        J.block<3, 1>(3 * k, col) = d_.dtip / (range_[i] * L);
+        J.block<3, 1>(3 * k, col) = weight(k) * d_.dtip / (range_[i] * L);
         dx_ = d_.dx;
       }
     }

@@ -179,6 +179,12 @@ class StaggeredShootingStepper final : public Stepper {
     ledger_ = o.ledger_;
   }
 
+  void warm_start_from(const Stepper& after) override {
+    const auto& o = dynamic_cast<const StaggeredShootingStepper&>(after);
+    plain_.warm_from(o.plain_);
+    extended_.warm_from(o.extended_);
+  }
+
   int tangent_size() const override { return tangent_.size(); }
   void read_tangent(std::span<double> x) const override { tangent_.read(xi_, eta_, x); }
   // bdf-alpha: the rule's history (x_(i-1), x_dot_i) is not moved (docs/control.md).

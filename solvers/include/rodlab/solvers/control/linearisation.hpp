@@ -35,11 +35,14 @@ class Linearisation {
   /// return. A step that fails in a perturbed run is reported (ok false, reason).
   dynamics::StepStatus directional(Plant& plant, const Eigen::Ref<const Eigen::VectorXd>& dx,
                                    const Eigen::Ref<const Eigen::VectorXd>& du, StepDerivative& out);
-  /// The same where the unperturbed step's x+ and tip are known (a controller's rollout): with
-  /// forward differences (options.central false) one control step instead of two.
+  /// The same where a controller's rollout has taken the unperturbed step: its x+, tip and the
+  /// plant after it. With forward differences (options.central false) one control step instead
+  /// of two, and the perturbed step's solves start from the unperturbed solution
+  /// (Plant::warm_start_from): one or two shooting integrations instead of about ten.
   dynamics::StepStatus directional(Plant& plant, const Eigen::Ref<const Eigen::VectorXd>& dx,
                                    const Eigen::Ref<const Eigen::VectorXd>& du, StepDerivative& out,
-                                   const Eigen::VectorXd& x_next, const Vector3& tip_next);
+                                   const Eigen::VectorXd& x_next, const Vector3& tip_next,
+                                   const PlantSnapshot& after);
 
   /// A (n x n) and B (n x m), column by column, and the tip Jacobian C = d p_tip(x+) / d x and
   /// D = d p_tip(x+) / d u (3 x n, 3 x m).
@@ -57,6 +60,7 @@ class Linearisation {
 
   LinearisationOptions options_;
   PlantSnapshot start_;
+  const PlantSnapshot* after_ = nullptr;  ///< the unperturbed step's end (directional, rollout)
   Eigen::VectorXd x_plus_, x_minus_, step_, u_, e_x_, e_u_;
   StepDerivative column_;
 };

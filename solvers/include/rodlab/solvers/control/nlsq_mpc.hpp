@@ -3,7 +3,8 @@
 // docs/control.md "NLSQ-MPC"). Each control step plans the inputs u_0..u_(H-1) of the next H
 // control steps from the plant's current state by minimising
 //
-//   sum_(k=1..H) |p_k - p_des,k|^2 / L^2                               tracking, in task space
+//   sum_(k=1..H) w_k |p_k - p_des,k|^2 / L^2                           tracking, in task space
+//                                                            (w_k = 1, w_H = w_terminal)
 //   + w_rate sum_(k=0..H-1) |(u_k - u_(k-1)) / range|^2                input rate (u_(-1): applied)
 //   + w_input sum_(k=0..H-1) |(u_k - lower) / range|^2                 input effort
 //
@@ -18,6 +19,7 @@
 // steps j+1..H-1 along the nominal rollout, sum_j m (H - j) one-step derivatives, not (4 H + 1) H
 // rollouts. The plan is warm-started from the previous one shifted by a step; the first input is
 // applied.
+#include <cmath>
 #include <span>
 #include <string>
 #include <vector>
@@ -33,6 +35,7 @@ struct MpcOptions {
   int horizon = 10;                ///< H >= 1 control steps
   double input_rate_weight = 1e-3; ///< w_rate (dimensionless; see above)
   double input_weight = 0.0;       ///< w_input
+  double terminal_weight = 1.0;    ///< w_terminal, on the last step's tracking term
   int max_iterations = 20;         ///< Levenberg-Marquardt iterations (Jacobians) per plan
   double function_tolerance = 1e-6;  ///< a relative decrease of the cost below this ends a plan
 };
@@ -62,11 +65,18 @@ class NlsqMpc {
   bool evaluate(Plant& plant, std::span<const Vector3> targets, const Eigen::VectorXd& U,
                 Eigen::VectorXd& residuals, Eigen::MatrixXd* J, std::string& reason);
 
+  /// Forgets the last plan: the next one starts from the plant's current input held.
+  void reset(const Plant& plant);
+
   /// The whole planned input sequence (H x m, row k = u_k).
   const Eigen::MatrixXd& planned() const { return plan_; }
   const MpcOptions& options() const { return options_; }
 
  private:
+  /// sqrt(w_k) of the tracking term of step k (0-based).
+  double weight(int k) const {
+    return k + 1 == options_.horizon ? std::sqrt(options_.terminal_weight) : 1.0;
+  }
   /// Rolls U out from start_ (keeping each step's state) into the residuals; false with reason
   /// when a step fails.
   bool residuals(Plant& plant, std::span<const Vector3> targets, const Eigen::VectorXd& U,
@@ -78,7 +88,7 @@ class NlsqMpc {
   MpcOptions options_;
   Linearisation lin_;
   PlantSnapshot start_;
-  std::vector<PlantSnapshot> states_;  ///< x_0..x_(H-1) of the last rollout
+  std::vector<PlantSnapshot> states_;  ///< x_0..x_H of the last rollout
   std::vector<Eigen::VectorXd> xs_;    ///< x_1..x_H of the last rollout (tangent coordinates)
   std::vector<Vector3> tips_;          ///< p_1..p_H of the last rollout
   Eigen::MatrixXd plan_;               ///< H x m

@@ -81,6 +81,10 @@ class Plant {
   /// Makes `s` the current state (time and input included), without allocating.
   void restore(const PlantSnapshot& s);
 
+  /// Starts the next control step's solves from those of `after`, a snapshot taken after the
+  /// same step from a nearby state (Stepper::warm_start_from; finite differences of a step).
+  void warm_start_from(const PlantSnapshot& after) { stepper_->warm_start_from(*after.stepper); }
+
   /// Tangent coordinates of the state (stepper.hpp).
   int state_size() const { return stepper_->tangent_size(); }
   void read_state(std::span<double> x) const { stepper_->read_tangent(x); }

@@ -95,6 +95,10 @@ class Stepper {
   /// Makes this stepper's state that of `other`, a clone of it (same scheme, problem and grid),
   /// without allocating: the steps that follow repeat those of `other` bit for bit.
   virtual void assign_state(const Stepper& /*other*/) { throw unsupported("assign_state"); }
+  /// Starts the next step's nonlinear solve from the solution of `after`, a clone that has just
+  /// taken that step from a nearby state (finite differences of a step: a perturbed step then
+  /// converges in one or two iterations). Explicit schemes ignore it.
+  virtual void warm_start_from(const Stepper& /*after*/) {}
   /// The number of tangent coordinates.
   virtual int tangent_size() const { throw unsupported("tangent_size"); }
   /// The current state's tangent coordinates (x.size() == tangent_size()).

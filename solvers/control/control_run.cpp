@@ -1,0 +1,245 @@
+#include "rodlab/solvers/control/control_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "rodlab/check.hpp"
+#include "rodlab/scene/trajectory.hpp"
+#include "rodlab/solvers/common/deadline.hpp"
+#include "rodlab/solvers/control/inverse_statics.hpp"
+#include "rodlab/solvers/control/nlsq_mpc.hpp"
+#include "rodlab/solvers/control/plant.hpp"
+#include "rodlab/solvers/control/static_targets.hpp"
+
+namespace rodlab::solvers::control {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using result::ControlEpisode;
+using result::ControlResult;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+const char* task_name(scene::ControlTask t) {
+  switch (t) {
+    case scene::ControlTask::reach: return "reach";
+    case scene::ControlTask::hold: return "hold";
+    case scene::ControlTask::track: return "track";
+  }
+  return "?";
+}
+
+/// The statics of the workspace draws and of the quasi-static controller.
+statics::StaticSolveOptions statics_options() { return InverseStaticsOptions{}.statics; }
+
+/// The targets of reach and hold: listed, or drawn from the static workspace.
+void choose_targets(const scene::Scene& scene, const scene::Control& c, ControlResult& out) {
+  out.seed = c.seed;
+  if (!c.targets.empty()) {
+    out.targets.drawn_from = result::TargetSource::scene;
+    out.targets.points = c.targets;
+    return;
+  }
+  const StaticTargets drawn = sample_static_targets(scene, statics_options(), c.target_count, c.seed);
+  out.targets.drawn_from = result::TargetSource::static_workspace;
+  out.targets.points = drawn.tips;
+}
+
+/// One row of the series.
+void record(ControlResult& out, int episode, double t, const Eigen::VectorXd& u,
+            const Vector3& tip, const Vector3& target, double solve_time, int iterations) {
+  auto& s = out.series;
+  s.t.push_back(t);
+  s.u.push_back(u);
+  s.tip.push_back(tip);
+  s.target.push_back(target);
+  s.error.push_back((tip - target).norm());
+  s.solve_time_s.push_back(solve_time);
+  s.iterations.push_back(iterations);
+  s.episode.push_back(episode);
+}
+
+/// The episode's error statistics over its rows.
+void close_episode(ControlResult& out, ControlEpisode& e, std::size_t first_row) {
+  const auto& err = out.series.error;
+  e.steps = static_cast<int>(err.size() - first_row);
+  if (e.steps == 0) return;
+  e.final_error = err.back();
+  e.min_error = *std::min_element(err.begin() + static_cast<long>(first_row), err.end());
+  double sum = 0.0;
+  for (std::size_t i = first_row; i < err.size(); ++i) sum += err[i];
+  e.mean_error = sum / e.steps;
+}
+
+/// nlsq-mpc on the dynamics: every episode from the plant's initial state.
+void run_mpc(const scene::Scene& scene, const ControlRunOptions& o, ControlResult& out) {
+  const scene::Control& c = o.control;
+  PlantOptions po;
+  po.solver = o.solver;
+  po.solver.max_iterations = std::max(o.solver.max_iterations, PlantOptions::kShotsPerStep);
+  po.dt_control = c.dt_control;
+  Plant plant(scene, po);
+  const PlantSnapshot initial = plant.snapshot();
+  MpcOptions mo;
+  mo.horizon = c.horizon;
+  mo.input_rate_weight = c.weights.input_rate;
+  mo.input_weight = c.weights.input;
+  mo.terminal_weight = c.weights.terminal;
+  NlsqMpc mpc(plant, mo);
+  const double L = plant.length(), threshold = c.threshold * L, dt = c.dt_control;
+  const bool track = c.task == scene::ControlTask::track;
+  const int episodes = track ? 1 : static_cast<int>(out.targets.points.size());
+  const int steps = track ? std::max(1, static_cast<int>(std::ceil(
+                                            scene::duration(*c.trajectory) / dt - 1e-9)))
+                          : c.max_steps;
+  std::vector<Vector3> horizon(c.horizon);
+  for (int e = 0; e < episodes && out.converged; ++e) {
+    plant.restore(initial);
+    mpc.reset(plant);
+    auto target_at = [&](double t) {
+      return track ? scene::position(*c.trajectory, t) : out.targets.points[e];
+    };
+    ControlEpisode episode;
+    episode.target = target_at(0.0);
+    const std::size_t first = out.series.t.size();
+    int below = 0;
+    for (int k = 0; k < steps; ++k) {
+      const double t = (k + 1) * dt;  // the step ends at t
+      for (int i = 0; i < c.horizon; ++i) horizon[i] = target_at(t + i * dt);
+      const auto t0 = Clock::now();
+      const MpcPlan plan = mpc.plan(plant, horizon);
+      const double solve_time = seconds_since(t0);
+      if (!plan.ok) {
+        out.converged = false;
+        out.reason = episode.reason = plan.reason;
+        break;
+      }
+      plant.set_input(plan.u);
+      const dynamics::StepStatus status = plant.advance();
+      if (!status.ok) {
+        out.converged = false;
+        out.reason = episode.reason = "the plant's step failed: " + status.reason;
+        break;
+      }
+      record(out, e, t, plan.u, plant.tip(), target_at(t), solve_time, plan.iterations);
+      const double error = out.series.error.back();
+      below = error < threshold ? below + 1 : 0;
+      if (c.task == scene::ControlTask::reach && below > 0) break;
+      if (c.task == scene::ControlTask::hold && below >= c.hold_steps) break;
+    }
+    close_episode(out, episode, first);
+    episode.success = track ? episode.steps == steps && episode.mean_error < threshold
+                            : (c.task == scene::ControlTask::reach ? below > 0 : below >= c.hold_steps);
+    out.episodes.push_back(episode);
+  }
+}
+
+/// quasi-static: inverse statics per target (reach, hold) or per control step (track).
+void run_quasi_static(const scene::Scene& scene, const ControlRunOptions& o, ControlResult& out) {
+  const scene::Control& c = o.control;
+  InverseStaticsOptions io;
+  io.tolerance = c.threshold * scene.rod.length;
+  InverseStatics solver(scene, io);
+  const bool track = c.task == scene::ControlTask::track;
+  const int episodes = track ? 1 : static_cast<int>(out.targets.points.size());
+  const int steps = track ? std::max(1, static_cast<int>(std::ceil(
+                                            scene::duration(*c.trajectory) / c.dt_control - 1e-9)))
+                          : 1;
+  for (int e = 0; e < episodes; ++e) {
+    ControlEpisode episode;
+    const std::size_t first = out.series.t.size();
+    for (int k = 0; k < steps; ++k) {
+      const double t = track ? (k + 1) * c.dt_control : 0.0;
+      const Vector3 target = track ? scene::position(*c.trajectory, t) : out.targets.points[e];
+      if (k == 0) episode.target = target;
+      const InverseStaticsResult r = solver.solve(target);
+      record(out, e, t, r.u, r.tip, target, r.wall_time_s, r.updates);
+      if (!r.reached && !track) episode.reason = r.reason;
+      if (!r.converged) {
+        out.converged = false;
+        out.reason = episode.reason = r.reason;
+        break;
+      }
+    }
+    close_episode(out, episode, first);
+    if (!track) episode.steps = out.series.iterations.back();  // updates, as the spec counts
+    const double threshold = c.threshold * scene.rod.length;
+    episode.success = track ? episode.mean_error < threshold : episode.final_error < threshold;
+    out.episodes.push_back(episode);
+    if (!out.converged) break;
+  }
+}
+
+void summarise(const ControlResult& in, double L, double dt_control, result::ControlSummary& s) {
+  int successes = 0;
+  for (const auto& e : in.episodes) successes += e.success ? 1 : 0;
+  s.success_rate = in.episodes.empty() ? 0.0 : static_cast<double>(successes) / in.episodes.size();
+  const auto& err = in.series.error;
+  double sum = 0.0, ratio_sum = 0.0, ratio_max = 0.0;
+  for (double v : err) sum += v;
+  for (double t : in.series.solve_time_s) {
+    ratio_sum += t / dt_control;
+    ratio_max = std::max(ratio_max, t / dt_control);
+  }
+  const double n = std::max<std::size_t>(1, err.size());
+  s.mean_error_pct_L = 100.0 * sum / n / L;
+  s.real_time_ratio_mean = ratio_sum / n;
+  s.real_time_ratio_max = ratio_max;
+}
+
+}  // namespace
+
+result::ControlResult run_control(const scene::Scene& scene, const ControlRunOptions& options) {
+  const scene::Control& c = options.control;
+  const bool mpc = options.controller == "nlsq-mpc";
+  RODLAB_THROW_UNLESS(mpc || options.controller == "quasi-static",
+                      "--controller: '{}' is not available yet (built: quasi-static, nlsq-mpc)",
+                      options.controller);
+  RODLAB_THROW_UNLESS(c.task != scene::ControlTask::track || c.trajectory.has_value(),
+                      "control.task track needs control.trajectory");
+  RODLAB_THROW_UNLESS(c.horizon >= 1 && c.dt_control > 0.0 && c.threshold > 0.0 &&
+                          c.max_steps >= 1 && c.hold_steps >= 1,
+                      "control: horizon, dt_control, threshold, max_steps and hold_steps must be "
+                      "positive");
+  const auto start = Clock::now();
+  ControlResult out;
+  out.scene = scene.name;
+  out.controller = options.controller;
+  out.task = task_name(c.task);
+  out.scheme = mpc ? options.solver.scheme : InverseStaticsOptions{}.statics.scheme;
+  out.nodes = mpc ? options.solver.nodes : InverseStaticsOptions{}.statics.nodes;
+  out.dt_control = c.dt_control;
+  out.horizon = mpc ? c.horizon : 0;
+  out.converged = true;
+  if (c.task == scene::ControlTask::track)
+    out.targets.drawn_from = result::TargetSource::trajectory, out.seed = c.seed;
+  else
+    choose_targets(scene, c, out);
+  try {
+    const DeadlineScope deadline(options.solver.max_wall_time);  // --max-wall-time
+    if (mpc)
+      run_mpc(scene, options, out);
+    else
+      run_quasi_static(scene, options, out);
+  } catch (const WallTimeExceeded& e) {  // common/deadline.hpp: the rows so far stay
+    out.converged = false;
+    out.reason = e.what();
+    if (!out.episodes.empty() || !out.series.t.empty()) {
+      ControlEpisode last;
+      close_episode(out, last, out.series.t.size());
+    }
+  }
+  if (out.converged && !out.reason)
+    for (const auto& e : out.episodes)
+      if (e.reason) out.reason = *e.reason;  // an unreachable target
+  summarise(out, scene.rod.length, c.dt_control, out.summary);
+  out.summary.wall_time_s = seconds_since(start);
+  return out;
+}
+
+}  // namespace rodlab::solvers::control
