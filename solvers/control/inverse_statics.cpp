@@ -59,7 +59,8 @@ class TipModel {
     return have_;
   }
   const Vector3& tip() const { return tracker_.tip_position(); }
-  /// dp/du at the last solved point (after a successful solve_at).
+  /// dp/du at the last solved point (after a successful solve_at): (4.10)'s J, exact
+  /// (ChebyshevTracker::tip_jacobian).
   bool jacobian(Matrix3X& J) {
     if (!have_jacobian_) {
       ++updates;
@@ -100,8 +101,9 @@ struct Outcome {
   std::string failure;  ///< why the method stopped without converging
 };
 
-/// Bounded Gauss-Newton with Levenberg-Marquardt damping (inverse_statics.hpp, "SOLVER"). u:
-/// feasible start on entry, the solution on return; the model is left solved at u.
+/// Bounded Gauss-Newton with Levenberg-Marquardt damping (inverse_statics.hpp, "SOLVER"), in place
+/// of (4.11)'s q <- q - 0.2 J^-1 e. u: feasible start on entry, the solution on return; the model
+/// is left solved at u.
 Outcome gauss_newton(const Problem& P, const InverseStaticsOptions& o, VectorXd& u) {
   const int m = static_cast<int>(u.size());
   Outcome out;
