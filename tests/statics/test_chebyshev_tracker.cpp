@@ -7,6 +7,7 @@
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/solvers/statics/chebyshev_tracker.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
+#include "rodlab/solvers/statics/workspace.hpp"
 
 using namespace rodlab;
 using namespace rodlab::solvers::statics;
@@ -61,4 +62,76 @@ BOOST_AUTO_TEST_CASE(warm_solves_and_tip_jacobian) {
     std::cout << "warm solve: " << tracker.iterations() << " Newton iterations\n";
     BOOST_TEST((tracker.tip_position() - cold_tip(scene, u1)).norm() <= 1e-11);
   }
+}
+
+namespace {
+
+/// Table 2.1 rod under gravity along -x with one actuator of each kind that has an input:
+/// a displacement-controlled cable (its tension an extra unknown), a pressurised chamber, and a
+/// muscle on [0, 0.07] (its length an extra unknown; a breakpoint, so two elements).
+scene::Scene mixed_actuators() {
+  return io::load_scene_from_string(R"(
+schema: rodlab.scene/1
+name: mixed-actuators
+rod:
+  length: 0.1
+  section: {shape: circle, diameter: 0.01}
+  material: {E: 1.0e6, G: 0.33e6, rho: 1000}
+tip:
+  free: {}
+loads:
+  gravity: [-9.81, 0, 0]
+actuators:
+  - cable: {offset: [0.004, 0], displacement: 0, limits: [0, 0.001]}
+  - fluidic: {offset: [0, 0.003], chamber_radius: 0.001, pressure: 0, limits: [0, 5.0e4]}
+  - muscle:
+      offset: [-0.003, 0]
+      section: {shape: circle, diameter: 0.001}
+      material: {E: 5.0e7, poisson: 0.5, rho: 1500}
+      input: 0
+      law: {type: linear, gain: 0.2, stiffness: 0}
+      span: [0, 0.07]
+      limits: [0, 2]
+solver: {scheme: chebyshev, nodes: 24, tol: 1.0e-10}
+)", "mixed-actuators.yaml");
+}
+
+/// The tip of a cold solve_static (chebyshev N = 24, tol 1e-12) with the inputs u.
+lie::Vector3 cold_tip_inputs(scene::Scene scene, const Eigen::Vector3d& u) {
+  const auto inputs = workspace_inputs(scene);
+  for (int k = 0; k < 3; ++k) *inputs[k].value = scene::ScalarSchedule(u[k]);
+  const auto r = solve_static(scene, {"chebyshev", 24, 1e-12, 50});
+  BOOST_TEST_REQUIRE(r.converged, r.reason);
+  return r.centerline.back().pose.translation();
+}
+
+}  // namespace
+
+// The same references with every kind of input: a cable's displacement and a muscle's q (both
+// with an extra unknown of the BVP, bordering the Newton matrix) and a chamber's pressure, under
+// gravity. Central differences of cold solves with steps 1e-4 of each input's range; agreement to
+// 1e-6 relative per column (the columns differ by orders of magnitude: m per m, per Pa, per unit q).
+BOOST_AUTO_TEST_CASE(tip_jacobian_with_every_input_kind) {
+  const scene::Scene scene = mixed_actuators();
+  ChebyshevTracker tracker(StaticProblem::from_scene(scene), {24, 1e-12, 50, 0});
+  const Eigen::Vector3d u0(0.0005, 2.0e4, 1.0), range(0.001, 5.0e4, 2.0);
+  BOOST_TEST_REQUIRE(tracker.solve(std::span<const double>(u0.data(), 3)), tracker.reason());
+  BOOST_TEST((tracker.tip_position() - cold_tip_inputs(scene, u0)).norm() <= 1e-11);
+  ChebyshevTracker::TipJacobian J;
+  const double steps[3] = {1e-6 * range[0], 1e-6 * range[1], 1e-6 * range[2]};
+  BOOST_TEST_REQUIRE(tracker.tip_jacobian(steps, J));
+  for (int k = 0; k < 3; ++k) {
+    const double h = 1e-4 * range[k];
+    Eigen::Vector3d up = u0, um = u0;
+    up[k] += h;
+    um[k] -= h;
+    const lie::Vector3 fd = (cold_tip_inputs(scene, up) - cold_tip_inputs(scene, um)) / (2 * h);
+    const double err = (J.col(k) - fd).norm() / fd.norm();
+    std::cout << "input " << k << ": J " << J.col(k).transpose() << ", |J - J_fd| / |J_fd| = " << err << "\n";
+    BOOST_TEST(err <= 1e-6);
+  }
+  const Eigen::Vector3d u1(0.0006, 2.5e4, 1.2);
+  BOOST_TEST_REQUIRE(tracker.solve(std::span<const double>(u1.data(), 3)), tracker.reason());
+  BOOST_TEST(tracker.warm());
+  BOOST_TEST((tracker.tip_position() - cold_tip_inputs(scene, u1)).norm() <= 1e-11);
 }
