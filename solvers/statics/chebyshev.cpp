@@ -344,7 +344,8 @@ class Collocation {
     set_extras(x);
     update_charts(x);
     ChebyshevNewtonMatrix& M = *newton_matrix_;
-    VectorXd xp = x;
+    VectorXd& xp = jacobian_scratch_;  // resized once: no allocation per Newton matrix
+    xp = x;
     if (extra_) border(x, xp);
     for (int e = 0; e < elements(); ++e) {
       const Element& el = elements_[e];
@@ -378,7 +379,9 @@ class Collocation {
                        bool reuse = false) {
     NewtonOutcome out;
     out.factorized = reuse;
-    VectorXd F, x_new, F_new, dx, next;
+    // Scratch kept across calls (a followed solve, ChebyshevTracker, calls this once per update).
+    VectorXd &F = newton_scratch_[0], &x_new = newton_scratch_[1], &F_new = newton_scratch_[2],
+             &dx = newton_scratch_[3], &next = newton_scratch_[4];
     if (!residual(x, F)) {
       out.reason = "the residual is not finite at the initial guess";
       out.residual_norm = std::numeric_limits<double>::infinity();
@@ -466,6 +469,78 @@ class Collocation {
     }
     out.reason = rodlab::format("no convergence within {} Newton iterations", max_iterations);
     return out;
+  }
+
+  /// dF/du at x (ChebyshevTracker): the residual's derivative with respect to each actuator's
+  /// input (ActuatorTerm::input), x held fixed. An input moves the residual through the axial
+  /// force F_k (tension, -P A_c, the muscle law in q) and, for length control, the target length
+  /// of its length row; dF_k/du_k and d target/du_k are central differences of those scalars
+  /// (step steps[k]; exact for the linear laws). F_k enters the node rows only through the tendon
+  /// law's strain: at fixed Lambda, dxi/dF_k = -(d law/d xi)^-1 c_k(xi) = -strain_jacobian c_k,
+  /// and (2.104) is linear in xi through dexp^-1_{-theta}, (2.103)'s ad_xi^T Lambda linear in xi,
+  /// the path lengths through d|u|/dxi (as in border()). One strain solve per node for all
+  /// inputs, where differencing the residual would take 2 per node and input. The continuity row
+  /// of a cable's entry (Lambda + F c(xi), rare) is differenced locally.
+  void input_jacobian(const VectorXd& x, std::span<const double> steps, MatrixXd& Fu) {
+    const int m = static_cast<int>(P_.actuators().size());
+    const auto& actuators = P_.actuators();
+    set_extras(x);
+    update_charts(x);
+    Fu.setZero(size(), m);
+    std::array<double, StaticProblem::kMaxActuators> dF{};
+    for (int k = 0; k < m; ++k) {
+      const double u = actuators[k].input, h = steps[k];
+      P_.set_actuator_input(k, u + h);
+      const double Fp = P_.axial_force(k), Tp = actuators[k].target_length.value_or(0.0);
+      P_.set_actuator_input(k, u - h);
+      const double Fm = P_.axial_force(k), Tm = actuators[k].target_length.value_or(0.0);
+      P_.set_actuator_input(k, u);
+      dF[k] = (Fp - Fm) / (2.0 * h);
+      if (extra_row_[k] >= 0 && actuators[k].target_length)  // extra_residuals: (length - target) / L
+        Fu(node_unknowns() + extra_row_[k], k) -= P_.load_factor() * (Tp - Tm) / (2.0 * h) / P_.length();
+    }
+    const Vector6& ws = P_.wrench_scale();
+    Eigen::Matrix<double, 12, 1> plus, minus;
+    for (int e = 0; e < elements(); ++e) {
+      const Element& el = elements_[e];
+      for (int i = 0; i < el.n; ++i) {
+        const int row = 12 * (el.offset + i);
+        const bool entry_row = i + 1 == el.n && el.entry_after;
+        if (entry_row) {  // Lambda + F c(xi(Lambda)): differenced (both terms move with F)
+          for (int k = 0; k < m; ++k) {
+            const double u = actuators[k].input, h = steps[k];
+            P_.set_actuator_input(k, u + h);
+            local_rows(e, i, x.data(), plus.data());
+            P_.set_actuator_input(k, u - h);
+            local_rows(e, i, x.data(), minus.data());
+            P_.set_actuator_input(k, u);
+            Fu.block<6, 1>(row + 6, k) = (plus.tail<6>() - minus.tail<6>()) / (2.0 * h);
+          }
+        }
+        if (!el.mask) continue;
+        const double* xn = x.data() + row;
+        const Vector6 th = theta(xn), La = lambda(xn);
+        const double s = probe(el, i);
+        const Vector6 xi = P_.strain(La, s, el.mask);
+        const lie::Matrix6 S = P_.strain_jacobian(xi, s, el.mask);
+        const lie::Matrix6 A = i > 0 ? lie::se3::dexp_inv(-th) : lie::Matrix6::Zero();
+        const double w = el.half * el.op->weights[i] / P_.length();
+        for (int k = 0; k < m; ++k) {
+          if (!((el.mask >> k) & 1U) || dF[k] == 0.0) continue;
+          const Vector6 dxi = -dF[k] * (S * actuators[k].path.unit_wrench(s, xi));
+          if (i > 0) Fu.block<6, 1>(row, k) = (-el.half * (A * dxi)).cwiseQuotient(theta_scale_);  // (2.104)
+          if (i + 1 < el.n)  // (2.103)
+            Fu.block<6, 1>(row + 6, k) = (-el.half * lie::se3::coad_apply(dxi, La)).cwiseQuotient(ws);
+          for (int j = 0; j < m; ++j) {  // path lengths of the length-controlled actuators here
+            if (!((el.mask >> j) & 1U) || extra_row_[j] < 0) continue;
+            const Vector3 t = actuators[j].path.tangent_vector(s, xi).normalized();
+            Eigen::Matrix<double, 1, 6> grad;  // d|u|/dxi
+            grad << -(t.transpose() * lie::so3::hat(actuators[j].path.offset(s))), t.transpose();
+            Fu(node_unknowns() + extra_row_[j], k) += w * grad.dot(dxi);
+          }
+        }
+      }
+    }
   }
 
   /// The assembled Newton matrix at x against central differences of the residual, column by
@@ -836,6 +911,8 @@ class Collocation {
   std::vector<SE3> charts_;
   int total_nodes_ = 0, nodes_ = 0;
   Vector6 theta_scale_;
+  std::array<VectorXd, 5> newton_scratch_;  ///< newton(): F, x_new, F_new, dx, next
+  VectorXd jacobian_scratch_;               ///< jacobian(): the perturbed copy of x
 };
 
 struct Attempt {
@@ -1087,7 +1164,9 @@ struct ChebyshevTracker::Impl {
   int iterations = 0;
   bool warm = false;
   Vector3 tip = Vector3::Zero();
-  Eigen::VectorXd x_trial, F_plus, F_minus, column, dx;  ///< scratch
+  Eigen::VectorXd x_trial, F_plus, column, dx;  ///< scratch
+  Eigen::MatrixXd Fu;                           ///< dF/du
+  TipJacobian J_scratch;
 
   void set_inputs(StaticProblem& P, std::span<const double> u) {
     for (std::size_t k = 0; k < u.size(); ++k) P.set_actuator_input(static_cast<int>(k), u[k]);
@@ -1150,15 +1229,11 @@ struct ChebyshevTracker::Impl {
     factorized = M.factorize(kSingularPivot);
     if (!factorized) return false;
     dxdu.resize(x.size(), m);
-    TipJacobian out(3, m);
+    TipJacobian& out = J_scratch;
+    out.resize(3, m);
+    C.input_jacobian(x, steps, Fu);
     for (int k = 0; k < m; ++k) {
-      const double h = steps[k];
-      P.set_actuator_input(k, u_solved[k] + h);  // F_u by central differences
-      C.residual(x, F_plus);
-      P.set_actuator_input(k, u_solved[k] - h);
-      C.residual(x, F_minus);
-      P.set_actuator_input(k, u_solved[k]);
-      column = (F_plus - F_minus) / (2.0 * h);
+      column = Fu.col(k);
       M.solve(column, dx);  // dx/du_k = -F_x^-1 F_u,k
       dxdu.col(k) = -dx;
       // d p_tip / d x along dx/du_k, central: t |dx/du_k| ~ 1e-6 of the unknowns' O(1) scale.

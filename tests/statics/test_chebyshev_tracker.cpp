@@ -67,8 +67,9 @@ BOOST_AUTO_TEST_CASE(warm_solves_and_tip_jacobian) {
 namespace {
 
 /// Table 2.1 rod under gravity along -x with one actuator of each kind that has an input:
-/// a displacement-controlled cable (its tension an extra unknown), a pressurised chamber, and a
-/// muscle on [0, 0.07] (its length an extra unknown; a breakpoint, so two elements).
+/// a displacement-controlled cable (its tension an extra unknown), a pressurised chamber, a
+/// muscle on [0, 0.07] (its length an extra unknown; a breakpoint), and a tension-driven cable
+/// entering the rod at 0.0437 (Lambda jumps there): three elements.
 scene::Scene mixed_actuators() {
   return io::load_scene_from_string(R"(
 schema: rodlab.scene/1
@@ -92,14 +93,15 @@ actuators:
       law: {type: linear, gain: 0.2, stiffness: 0}
       span: [0, 0.07]
       limits: [0, 2]
+  - cable: {offset: [0, -0.004], tension: 0, span: [0.0437, 0.1], limits: [0, 0.5]}
 solver: {scheme: chebyshev, nodes: 24, tol: 1.0e-10}
 )", "mixed-actuators.yaml");
 }
 
 /// The tip of a cold solve_static (chebyshev N = 24, tol 1e-12) with the inputs u.
-lie::Vector3 cold_tip_inputs(scene::Scene scene, const Eigen::Vector3d& u) {
+lie::Vector3 cold_tip_inputs(scene::Scene scene, const Eigen::Vector4d& u) {
   const auto inputs = workspace_inputs(scene);
-  for (int k = 0; k < 3; ++k) *inputs[k].value = scene::ScalarSchedule(u[k]);
+  for (int k = 0; k < 4; ++k) *inputs[k].value = scene::ScalarSchedule(u[k]);
   const auto r = solve_static(scene, {"chebyshev", 24, 1e-12, 50});
   BOOST_TEST_REQUIRE(r.converged, r.reason);
   return r.centerline.back().pose.translation();
@@ -108,21 +110,21 @@ lie::Vector3 cold_tip_inputs(scene::Scene scene, const Eigen::Vector3d& u) {
 }  // namespace
 
 // The same references with every kind of input: a cable's displacement and a muscle's q (both
-// with an extra unknown of the BVP, bordering the Newton matrix) and a chamber's pressure, under
-// gravity. Central differences of cold solves with steps 1e-4 of each input's range; agreement to
+// with an extra unknown of the BVP, bordering the Newton matrix), a chamber's pressure and the
+// tension of a cable entering the rod, under gravity. Central differences of cold solves with steps 1e-4 of each input's range; agreement to
 // 1e-6 relative per column (the columns differ by orders of magnitude: m per m, per Pa, per unit q).
 BOOST_AUTO_TEST_CASE(tip_jacobian_with_every_input_kind) {
   const scene::Scene scene = mixed_actuators();
   ChebyshevTracker tracker(StaticProblem::from_scene(scene), {24, 1e-12, 50, 0});
-  const Eigen::Vector3d u0(0.0005, 2.0e4, 1.0), range(0.001, 5.0e4, 2.0);
-  BOOST_TEST_REQUIRE(tracker.solve(std::span<const double>(u0.data(), 3)), tracker.reason());
+  const Eigen::Vector4d u0(0.0005, 2.0e4, 1.0, 0.3), range(0.001, 5.0e4, 2.0, 0.5);
+  BOOST_TEST_REQUIRE(tracker.solve(std::span<const double>(u0.data(), 4)), tracker.reason());
   BOOST_TEST((tracker.tip_position() - cold_tip_inputs(scene, u0)).norm() <= 1e-11);
   ChebyshevTracker::TipJacobian J;
-  const double steps[3] = {1e-6 * range[0], 1e-6 * range[1], 1e-6 * range[2]};
+  const double steps[4] = {1e-6 * range[0], 1e-6 * range[1], 1e-6 * range[2], 1e-6 * range[3]};
   BOOST_TEST_REQUIRE(tracker.tip_jacobian(steps, J));
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < 4; ++k) {
     const double h = 1e-4 * range[k];
-    Eigen::Vector3d up = u0, um = u0;
+    Eigen::Vector4d up = u0, um = u0;
     up[k] += h;
     um[k] -= h;
     const lie::Vector3 fd = (cold_tip_inputs(scene, up) - cold_tip_inputs(scene, um)) / (2 * h);
@@ -130,8 +132,8 @@ BOOST_AUTO_TEST_CASE(tip_jacobian_with_every_input_kind) {
     std::cout << "input " << k << ": J " << J.col(k).transpose() << ", |J - J_fd| / |J_fd| = " << err << "\n";
     BOOST_TEST(err <= 1e-6);
   }
-  const Eigen::Vector3d u1(0.0006, 2.5e4, 1.2);
-  BOOST_TEST_REQUIRE(tracker.solve(std::span<const double>(u1.data(), 3)), tracker.reason());
+  const Eigen::Vector4d u1(0.0006, 2.5e4, 1.2, 0.35);
+  BOOST_TEST_REQUIRE(tracker.solve(std::span<const double>(u1.data(), 4)), tracker.reason());
   BOOST_TEST(tracker.warm());
   BOOST_TEST((tracker.tip_position() - cold_tip_inputs(scene, u1)).norm() <= 1e-11);
 }

@@ -16,11 +16,13 @@
 //     dx/du = -F_x^-1 F_u,   d p_tip/du = (d p_tip/dx) dx/du,
 // with F_x the scheme's own Newton matrix evaluated at the solution and factorised by
 // condensation (chebyshev_newton_matrix.hpp: exact up to its differenced node blocks, ~1e-10),
-// F_u by central differences of the residual in each input (the residual is smooth in the
-// inputs: they enter the tendon law and the length rows), and d p_tip/dx applied as a central
-// difference along dx/du (p_tip depends on x only through the charts' chain and the last
-// node's theta). Cost: one Newton matrix and factorisation, 2 m residuals, m solves (m inputs).
-// The factorisation is then kept for the next solve's chord steps.
+// F_u in closed form through the tendon law (an input moves the residual only through its
+// actuator's axial force, dxi/dF_k = -(d law/d xi)^-1 c_k(xi) at fixed Lambda, and through a
+// length-controlled actuator's target length; chebyshev.cpp, Collocation::input_jacobian), and
+// d p_tip/dx applied as a central difference along dx/du (p_tip depends on x only through the
+// charts' chain and the last node's theta). Cost: one Newton matrix and factorisation, one
+// strain solve per node, m solves (m inputs). The factorisation is then kept for the next
+// solve's chord steps.
 #include <memory>
 #include <span>
 #include <string>
@@ -57,8 +59,9 @@ class ChebyshevTracker {
   /// Tip position of the last converged solution (world frame).
   const Vector3& tip_position() const;
   /// d p_tip / d u at the last converged solution (3 x inputs(), world frame); `steps`: the
-  /// central-difference step of each input for F_u (about 1e-6 of its range). False if the
-  /// Newton matrix is singular there (J is then left unchanged).
+  /// central-difference step of each input for the scalars dF_k/du_k and d target/du_k (and a
+  /// cable entry's row), about 1e-6 of its range. False if the Newton matrix is singular there
+  /// (J is then left unchanged).
   bool tip_jacobian(std::span<const double> steps, TipJacobian& J);
   /// The full result of the last converged solution (allocates; not for the hot loop).
   result::StaticResult result() const;
