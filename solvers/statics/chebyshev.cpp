@@ -1,4 +1,5 @@
 #include "rodlab/solvers/statics/chebyshev.hpp"
+#include "rodlab/solvers/statics/chebyshev_tracker.hpp"
 
 #include <algorithm>
 #include <array>
@@ -190,6 +191,7 @@ struct NewtonOutcome {
   int iterations = 0;
   double residual_norm = 0.0;
   std::string reason;
+  bool factorized = false;  ///< the Newton matrix holds a valid (condensed) factorisation on return
 };
 
 /// The collocation system of one element layout at the problem's current load factor.
@@ -234,6 +236,14 @@ class Collocation {
   int node_unknowns() const { return 12 * total_nodes_; }
   int elements() const { return static_cast<int>(elements_.size()); }
   StaticProblem& problem() { return P_; }
+  ChebyshevNewtonMatrix& newton_matrix() { return *newton_matrix_; }
+
+  /// The tip pose of x (sets the charts from x).
+  SE3 tip_pose(const VectorXd& x) {
+    update_charts(x);
+    const Element& last = elements_.back();
+    return charts_.back() * SE3::exp(theta(x.data() + 12 * (last.offset + last.n - 1)));
+  }
 
   /// Reference configuration theta = (s - s_e) xi* and the undeformed rod's equilibrium wrench at
   /// the current load factor (the actuator forces are internal: only cables entering from
@@ -334,7 +344,8 @@ class Collocation {
     set_extras(x);
     update_charts(x);
     ChebyshevNewtonMatrix& M = *newton_matrix_;
-    VectorXd xp = x;
+    VectorXd& xp = jacobian_scratch_;  // resized once: no allocation per Newton matrix
+    xp = x;
     if (extra_) border(x, xp);
     for (int e = 0; e < elements(); ++e) {
       const Element& el = elements_[e];
@@ -360,10 +371,17 @@ class Collocation {
     update_charts(x);
   }
 
-  /// Newton at the current load factor; x is updated in place (the last accepted iterate).
-  NewtonOutcome newton(VectorXd& x, double tol, int max_iterations, int& factorizations) {
+  /// Newton at the current load factor; x is updated in place (the last accepted iterate). With
+  /// `reuse`, the first steps are chord steps with the factorisation the Newton matrix holds
+  /// already (ChebyshevTracker: the one at the previous equilibrium), refreshed as usual when
+  /// they stop contracting.
+  NewtonOutcome newton(VectorXd& x, double tol, int max_iterations, int& factorizations,
+                       bool reuse = false) {
     NewtonOutcome out;
-    VectorXd F, x_new, F_new, dx, next;
+    out.factorized = reuse;
+    // Scratch kept across calls (a followed solve, ChebyshevTracker, calls this once per update).
+    VectorXd &F = newton_scratch_[0], &x_new = newton_scratch_[1], &F_new = newton_scratch_[2],
+             &dx = newton_scratch_[3], &next = newton_scratch_[4];
     if (!residual(x, F)) {
       out.reason = "the residual is not finite at the initial guess";
       out.residual_norm = std::numeric_limits<double>::infinity();
@@ -378,7 +396,7 @@ class Collocation {
       else M.solve(rhs, out);
       out = -out;
     };
-    bool have_lu = false, fresh = false, have_next = false, stalled = false;
+    bool have_lu = reuse, fresh = false, have_next = false, stalled = false;
     // Converged: |F| <= tol, or |F| at its rounding level and no longer decreasing.
     auto at_rounding_level = [&] { return out.residual_norm <= kRoundingFactor * rounding_level(x); };
     for (out.iterations = 0;; ++out.iterations) {
@@ -391,6 +409,7 @@ class Collocation {
       if (!have_lu) {
         jacobian(x);
         ++factorizations;
+        out.factorized = true;
         // A singular matrix (e.g. the axial mode of a straight Kirchhoff rod with both ends
         // clamped, where the axial force is undetermined to first order) gets least-squares steps
         // with the full matrix.
@@ -402,6 +421,7 @@ class Collocation {
         if (use_cod) {
           M.assemble(J_);
           cod.compute(J_);
+          out.factorized = false;
         }
         have_lu = fresh = true;
         have_next = !use_cod;
@@ -449,6 +469,78 @@ class Collocation {
     }
     out.reason = rodlab::format("no convergence within {} Newton iterations", max_iterations);
     return out;
+  }
+
+  /// dF/du at x (ChebyshevTracker): the residual's derivative with respect to each actuator's
+  /// input (ActuatorTerm::input), x held fixed. An input moves the residual through the axial
+  /// force F_k (tension, -P A_c, the muscle law in q) and, for length control, the target length
+  /// of its length row; dF_k/du_k and d target/du_k are central differences of those scalars
+  /// (step steps[k]; exact for the linear laws). F_k enters the node rows only through the tendon
+  /// law's strain: at fixed Lambda, dxi/dF_k = -(d law/d xi)^-1 c_k(xi) = -strain_jacobian c_k,
+  /// and (2.104) is linear in xi through dexp^-1_{-theta}, (2.103)'s ad_xi^T Lambda linear in xi,
+  /// the path lengths through d|u|/dxi (as in border()). One strain solve per node for all
+  /// inputs, where differencing the residual would take 2 per node and input. The continuity row
+  /// of a cable's entry (Lambda + F c(xi), rare) is differenced locally.
+  void input_jacobian(const VectorXd& x, std::span<const double> steps, MatrixXd& Fu) {
+    const int m = static_cast<int>(P_.actuators().size());
+    const auto& actuators = P_.actuators();
+    set_extras(x);
+    update_charts(x);
+    Fu.setZero(size(), m);
+    std::array<double, StaticProblem::kMaxActuators> dF{};
+    for (int k = 0; k < m; ++k) {
+      const double u = actuators[k].input, h = steps[k];
+      P_.set_actuator_input(k, u + h);
+      const double Fp = P_.axial_force(k), Tp = actuators[k].target_length.value_or(0.0);
+      P_.set_actuator_input(k, u - h);
+      const double Fm = P_.axial_force(k), Tm = actuators[k].target_length.value_or(0.0);
+      P_.set_actuator_input(k, u);
+      dF[k] = (Fp - Fm) / (2.0 * h);
+      if (extra_row_[k] >= 0 && actuators[k].target_length)  // extra_residuals: (length - target) / L
+        Fu(node_unknowns() + extra_row_[k], k) -= P_.load_factor() * (Tp - Tm) / (2.0 * h) / P_.length();
+    }
+    const Vector6& ws = P_.wrench_scale();
+    Eigen::Matrix<double, 12, 1> plus, minus;
+    for (int e = 0; e < elements(); ++e) {
+      const Element& el = elements_[e];
+      for (int i = 0; i < el.n; ++i) {
+        const int row = 12 * (el.offset + i);
+        const bool entry_row = i + 1 == el.n && el.entry_after;
+        if (entry_row) {  // Lambda + F c(xi(Lambda)): differenced (both terms move with F)
+          for (int k = 0; k < m; ++k) {
+            const double u = actuators[k].input, h = steps[k];
+            P_.set_actuator_input(k, u + h);
+            local_rows(e, i, x.data(), plus.data());
+            P_.set_actuator_input(k, u - h);
+            local_rows(e, i, x.data(), minus.data());
+            P_.set_actuator_input(k, u);
+            Fu.block<6, 1>(row + 6, k) = (plus.tail<6>() - minus.tail<6>()) / (2.0 * h);
+          }
+        }
+        if (!el.mask) continue;
+        const double* xn = x.data() + row;
+        const Vector6 th = theta(xn), La = lambda(xn);
+        const double s = probe(el, i);
+        const Vector6 xi = P_.strain(La, s, el.mask);
+        const lie::Matrix6 S = P_.strain_jacobian(xi, s, el.mask);
+        const lie::Matrix6 A = i > 0 ? lie::se3::dexp_inv(-th) : lie::Matrix6::Zero();
+        const double w = el.half * el.op->weights[i] / P_.length();
+        for (int k = 0; k < m; ++k) {
+          if (!((el.mask >> k) & 1U) || dF[k] == 0.0) continue;
+          const Vector6 dxi = -dF[k] * (S * actuators[k].path.unit_wrench(s, xi));
+          if (i > 0) Fu.block<6, 1>(row, k) = (-el.half * (A * dxi)).cwiseQuotient(theta_scale_);  // (2.104)
+          if (i + 1 < el.n)  // (2.103)
+            Fu.block<6, 1>(row + 6, k) = (-el.half * lie::se3::coad_apply(dxi, La)).cwiseQuotient(ws);
+          for (int j = 0; j < m; ++j) {  // path lengths of the length-controlled actuators here
+            if (!((el.mask >> j) & 1U) || extra_row_[j] < 0) continue;
+            const Vector3 t = actuators[j].path.tangent_vector(s, xi).normalized();
+            Eigen::Matrix<double, 1, 6> grad;  // d|u|/dxi
+            grad << -(t.transpose() * lie::so3::hat(actuators[j].path.offset(s))), t.transpose();
+            Fu(node_unknowns() + extra_row_[j], k) += w * grad.dot(dxi);
+          }
+        }
+      }
+    }
   }
 
   /// The assembled Newton matrix at x against central differences of the residual, column by
@@ -819,6 +911,8 @@ class Collocation {
   std::vector<SE3> charts_;
   int total_nodes_ = 0, nodes_ = 0;
   Vector6 theta_scale_;
+  std::array<VectorXd, 5> newton_scratch_;  ///< newton(): F, x_new, F_new, dx, next
+  VectorXd jacobian_scratch_;               ///< jacobian(): the perturbed copy of x
 };
 
 struct Attempt {
@@ -829,12 +923,19 @@ struct Attempt {
   std::string reason;
 };
 
+/// The collocation and the unknowns of a finished solve, for ChebyshevTracker.
+struct KeptSolution {
+  std::optional<Collocation> collocation;
+  VectorXd x;
+};
+
 class ChebyshevSolver {
  public:
   ChebyshevSolver(const StaticProblem& problem, const ChebyshevOptions& options)
       : P_(problem), options_(options) {}
 
-  result::StaticResult run(ChebyshevReport* report) {
+  /// With `kept`, the returned solution's collocation and unknowns are moved there.
+  result::StaticResult run(ChebyshevReport* report, KeptSolution* kept = nullptr) {
     const int N = options_.nodes;
     int E = options_.elements > 0 ? options_.elements : 1;
     const bool automatic = options_.elements <= 0;
@@ -903,6 +1004,10 @@ class ChebyshevSolver {
       report->elements = C.elements();
       report->factorizations = factorizations_;
       report->max_chart_rotation = C.max_chart_rotation(best_attempt.x);
+    }
+    if (kept) {
+      kept->collocation.emplace(std::move(C));
+      kept->x = std::move(best_attempt.x);
     }
     return out;
   }
@@ -1041,6 +1146,148 @@ result::StaticResult solve_chebyshev(const StaticProblem& problem, const Chebysh
                                      ChebyshevReport* report) {
   check_options(problem, options);
   return ChebyshevSolver(problem, options).run(report);
+}
+
+// --- ChebyshevTracker (chebyshev_tracker.hpp) ------------------------------------------------
+
+struct ChebyshevTracker::Impl {
+  Impl(const StaticProblem& p, const ChebyshevOptions& o) : problem(p), options(o) {}
+
+  StaticProblem problem;  ///< the inputs of the last solve (for full solves)
+  ChebyshevOptions options;
+  KeptSolution kept;      ///< the collocation and the last converged x (if any)
+  bool have_solution = false;
+  Eigen::VectorXd u_solved;   ///< the inputs of kept.x
+  Eigen::MatrixXd dxdu;       ///< dx/du at an earlier solution, for the predictor (or empty)
+  bool factorized = false;    ///< the kept Newton matrix holds a valid factorisation
+  std::string reason;
+  int iterations = 0;
+  bool warm = false;
+  Vector3 tip = Vector3::Zero();
+  Eigen::VectorXd x_trial, F_plus, column, dx;  ///< scratch
+  Eigen::MatrixXd Fu;                           ///< dF/du
+  TipJacobian J_scratch;
+
+  void set_inputs(StaticProblem& P, std::span<const double> u) {
+    for (std::size_t k = 0; k < u.size(); ++k) P.set_actuator_input(static_cast<int>(k), u[k]);
+  }
+
+  /// Newton from the kept equilibrium (with the predictor); false if it fails.
+  bool warm_solve(const Eigen::Map<const Eigen::VectorXd>& u) {
+    Collocation& C = *kept.collocation;
+    set_inputs(C.problem(), std::span<const double>(u.data(), u.size()));
+    C.problem().set_load_factor(1.0);
+    x_trial = kept.x;
+    if (dxdu.cols() == u.size() && dxdu.rows() == x_trial.size()) x_trial.noalias() += dxdu * (u - u_solved);
+    int factorizations = 0;
+    const auto r = C.newton(x_trial, options.tol, options.max_iterations, factorizations, factorized);
+    iterations = r.iterations;
+    factorized = r.factorized;
+    if (!r.converged || !(C.max_chart_rotation(x_trial) <= kSplitRotation)) return false;
+    kept.x.swap(x_trial);
+    return true;
+  }
+
+  bool solve(std::span<const double> inputs) {
+    RODLAB_THROW_UNLESS(inputs.size() == problem.actuators().size(),
+                        "chebyshev tracker: expected {} inputs, got {}", problem.actuators().size(),
+                        inputs.size());
+    const Eigen::Map<const Eigen::VectorXd> u(inputs.data(), static_cast<Eigen::Index>(inputs.size()));
+    reason.clear();
+    warm = have_solution && warm_solve(u);
+    if (!warm) {
+      set_inputs(problem, inputs);
+      KeptSolution fresh;
+      auto r = ChebyshevSolver(problem, options).run(nullptr, &fresh);
+      iterations += r.iterations;
+      if (!r.converged) {
+        reason = r.reason;
+        factorized = false;  // the kept collocation's matrix was used by the failed warm attempt
+        return false;
+      }
+      kept = std::move(fresh);
+      dxdu.resize(0, 0);
+      factorized = false;
+    }
+    have_solution = true;
+    u_solved = u;
+    tip = kept.collocation->tip_pose(kept.x).translation();
+    return true;
+  }
+
+  bool tip_jacobian(std::span<const double> steps, TipJacobian& J) {
+    RODLAB_THROW_UNLESS(have_solution, "chebyshev tracker: no converged solution yet");
+    RODLAB_THROW_UNLESS(steps.size() == static_cast<std::size_t>(u_solved.size()),
+                        "chebyshev tracker: expected {} steps, got {}", u_solved.size(), steps.size());
+    Collocation& C = *kept.collocation;
+    StaticProblem& P = C.problem();
+    const Eigen::VectorXd& x = kept.x;
+    const int m = static_cast<int>(u_solved.size());
+    set_inputs(P, std::span<const double>(u_solved.data(), m));
+    C.jacobian(x);  // F_x at the solution
+    ChebyshevNewtonMatrix& M = C.newton_matrix();
+    factorized = M.factorize(kSingularPivot);
+    if (!factorized) return false;
+    dxdu.resize(x.size(), m);
+    TipJacobian& out = J_scratch;
+    out.resize(3, m);
+    C.input_jacobian(x, steps, Fu);
+    for (int k = 0; k < m; ++k) {
+      column = Fu.col(k);
+      M.solve(column, dx);  // dx/du_k = -F_x^-1 F_u,k
+      dxdu.col(k) = -dx;
+      // d p_tip / d x along dx/du_k, central: t |dx/du_k| ~ 1e-6 of the unknowns' O(1) scale.
+      const double t = 1e-6 / std::max(1e-300, dx.lpNorm<Eigen::Infinity>());
+      x_trial = x - t * dx;
+      const Vector3 plus = C.tip_pose(x_trial).translation();
+      x_trial = x + t * dx;
+      const Vector3 minus = C.tip_pose(x_trial).translation();
+      out.col(k) = (plus - minus) / (2.0 * t);
+    }
+    C.residual(x, F_plus);  // the charts and extra unknowns back at x
+    J = out;
+    return J.allFinite();
+  }
+};
+
+ChebyshevTracker::ChebyshevTracker(const StaticProblem& problem, const ChebyshevOptions& options)
+    : impl_(std::make_unique<Impl>(problem, options)) {
+  check_options(problem, options);
+}
+ChebyshevTracker::~ChebyshevTracker() = default;
+ChebyshevTracker::ChebyshevTracker(ChebyshevTracker&&) noexcept = default;
+ChebyshevTracker& ChebyshevTracker::operator=(ChebyshevTracker&&) noexcept = default;
+
+int ChebyshevTracker::inputs() const { return static_cast<int>(impl_->problem.actuators().size()); }
+bool ChebyshevTracker::solve(std::span<const double> inputs) {
+  impl_->iterations = 0;
+  return impl_->solve(inputs);
+}
+const std::string& ChebyshevTracker::reason() const { return impl_->reason; }
+int ChebyshevTracker::iterations() const { return impl_->iterations; }
+bool ChebyshevTracker::warm() const { return impl_->warm; }
+const Vector3& ChebyshevTracker::tip_position() const { return impl_->tip; }
+bool ChebyshevTracker::tip_jacobian(std::span<const double> steps, TipJacobian& J) {
+  return impl_->tip_jacobian(steps, J);
+}
+
+result::StaticResult ChebyshevTracker::result() const {
+  RODLAB_THROW_UNLESS(impl_->have_solution, "chebyshev tracker: no converged solution yet");
+  Collocation& C = *impl_->kept.collocation;
+  impl_->set_inputs(C.problem(), std::span<const double>(impl_->u_solved.data(), impl_->u_solved.size()));
+  std::vector<double> s;
+  std::vector<SE3> g;
+  std::vector<Vector6> Lambda;
+  C.nodes(impl_->kept.x, s, g, Lambda);
+  result::StaticResult out;
+  fill_static_result(C.problem(), s, g, Lambda, out);
+  out.scene = impl_->problem.name();
+  out.scheme = "chebyshev";
+  out.nodes = impl_->options.nodes;
+  out.converged = true;
+  out.iterations = impl_->iterations;
+  check_cables_taut(C.problem(), out);
+  return out;
 }
 
 }  // namespace rodlab::solvers::statics

@@ -147,12 +147,8 @@ void StaticProblem::add_actuator(ActuatorTerm term) {
     rest += sum * h / 3.0;
   }
   term.rest_length = rest;
-  // Length control: the input is a displacement (cable pulled in) or a volume (chamber).
-  if (term.target_length) {
-    term.target_length = term.kind == ActuatorKind::cable ? rest - term.input
-                                                          : loads::chamber_length(term.input, term.chamber_area);
-  }
   actuators_.push_back(std::move(term));
+  set_actuator_input(static_cast<int>(actuators_.size()) - 1, actuators_.back().input);
   const ActuatorTerm& a = actuators_.back();
   unknown_value_.push_back(a.kind == ActuatorKind::muscle ? a.rest_length : 0.0);
   if (a.has_unknown()) ++extra_count_;
@@ -161,6 +157,18 @@ void StaticProblem::add_actuator(ActuatorTerm term) {
   for (double k : a.path.knots()) breakpoints_.push_back(k);
   std::sort(breakpoints_.begin(), breakpoints_.end());
   breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
+}
+
+void StaticProblem::set_actuator_input(int k, double value) {
+  RODLAB_THROW_UNLESS(k >= 0 && k < static_cast<int>(actuators_.size()),
+                      "actuator index {} out of range (the problem has {} actuators)", k, actuators_.size());
+  ActuatorTerm& term = actuators_[k];
+  term.input = value;
+  // Length control: the input is a displacement (cable pulled in) or a volume (chamber).
+  if (term.target_length) {
+    term.target_length = term.kind == ActuatorKind::cable ? term.rest_length - value
+                                                          : loads::chamber_length(value, term.chamber_area);
+  }
 }
 
 StaticProblem::Mask StaticProblem::active_mask(double s_mid) const {

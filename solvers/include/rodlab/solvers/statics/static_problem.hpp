@@ -52,6 +52,10 @@ class StaticProblem {
   void set_name(std::string name) { name_ = std::move(name); }
   /// Adds an actuator (at most kMaxActuators); computes its rest length.
   void add_actuator(ActuatorTerm term);
+  /// Sets actuator k's prescribed input (ActuatorTerm::input: tension, displacement, pressure,
+  /// volume or muscle q, as in the scene), and the target length that a displacement or a volume
+  /// prescribes, as add_actuator does. For inverse statics (control/inverse_statics.hpp).
+  void set_actuator_input(int k, double value);
 
   // --- queries -------------------------------------------------------------------------
   const rod::RodModel& model() const { return model_; }

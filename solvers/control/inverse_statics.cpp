@@ -1,0 +1,390 @@
+#include "rodlab/solvers/control/inverse_statics.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <span>
+#include <stdexcept>
+
+#include <ceres/ceres.h>
+
+#include "rodlab/check.hpp"
+#include "rodlab/solvers/common/box_qp.hpp"
+#include "rodlab/solvers/statics/chebyshev_tracker.hpp"
+#include "rodlab/solvers/statics/workspace.hpp"
+
+namespace rodlab::solvers::control {
+namespace {
+
+using Eigen::VectorXd;
+using Matrix3X = statics::ChebyshevTracker::TipJacobian;
+
+/// Central-difference step of each input for F_u, as a fraction of its scale s_k.
+constexpr double kSensitivityStep = 1e-6;
+/// A step is accepted when the cost falls by at least this fraction of the predicted fall.
+constexpr double kAcceptRatio = 1e-4;
+/// Damping trials per update before it gives up (each one statics solve).
+constexpr int kMaxDampingTrials = 30;
+/// Nothing moves: the box QP's step is below this (scaled inputs): a KKT point.
+constexpr double kStationaryStep = 1e-12;
+/// Ceres: initial trust-region radius, pure Gauss-Newton steps at first (with damping above the
+/// regularisation weight the step would barely move along the null space of J).
+constexpr double kCeresInitialRadius = 1e12;
+
+/// The forward model p(u) and dp/du: the tracked statics, solved at most once per point and
+/// differentiated at most once per point (a Jacobian evaluation is one update).
+class TipModel {
+ public:
+  TipModel(statics::ChebyshevTracker& tracker, const VectorXd& scale) : tracker_(tracker) {
+    steps_ = kSensitivityStep * scale;
+    u_.resize(scale.size());
+  }
+  int updates = 0, solves = 0, newton_iterations = 0;
+  std::string failure;  ///< the last forward solve's reason, if it failed
+
+  void reset_counters() {
+    updates = solves = newton_iterations = 0;
+    failure.clear();
+  }
+  bool solve_at(const double* u) {
+    const auto m = u_.size();
+    if (have_ && std::equal(u, u + m, u_.data())) return true;
+    std::copy(u, u + m, u_.data());
+    have_jacobian_ = false;
+    ++solves;
+    have_ = tracker_.solve(std::span<const double>(u, m));
+    newton_iterations += tracker_.iterations();
+    if (!have_) failure = tracker_.reason();
+    return have_;
+  }
+  const Vector3& tip() const { return tracker_.tip_position(); }
+  /// dp/du at the last solved point (after a successful solve_at): (4.10)'s J, exact
+  /// (ChebyshevTracker::tip_jacobian).
+  bool jacobian(Matrix3X& J) {
+    if (!have_jacobian_) {
+      ++updates;
+      if (!tracker_.tip_jacobian(std::span<const double>(steps_.data(), steps_.size()), J_)) {
+        failure = "singular statics Newton matrix at the equilibrium (no sensitivity)";
+        return false;
+      }
+      have_jacobian_ = true;
+    }
+    J = J_;
+    return true;
+  }
+
+ private:
+  statics::ChebyshevTracker& tracker_;
+  VectorXd steps_, u_;
+  bool have_ = false, have_jacobian_ = false;
+  Matrix3X J_;
+};
+
+/// The problem's data for one target.
+struct Problem {
+  TipModel& model;
+  Vector3 target;
+  const VectorXd& scale;  ///< s_k
+  double weight, length;
+  const std::vector<std::pair<double, double>>& limits;
+  /// |p - p*|^2 / L^2 + w |u / s|^2 at the model's current point u.
+  double cost(const VectorXd& u) const {
+    return (model.tip() - target).squaredNorm() / (length * length) +
+           weight * u.cwiseQuotient(scale).squaredNorm();
+  }
+};
+
+/// What a method returns; the caller fills the rest of the result.
+struct Outcome {
+  bool converged = false;
+  std::string failure;  ///< why the method stopped without converging
+};
+
+/// Bounded Gauss-Newton with Levenberg-Marquardt damping (inverse_statics.hpp, "SOLVER"), in place
+/// of (4.11)'s q <- q - 0.2 J^-1 e. u: feasible start on entry, the solution on return; the model
+/// is left solved at u.
+Outcome gauss_newton(const Problem& P, const InverseStaticsOptions& o, VectorXd& u) {
+  const int m = static_cast<int>(u.size());
+  Outcome out;
+  if (!P.model.solve_at(u.data())) {
+    out.failure = "the statics did not converge at the initial inputs: " + P.model.failure;
+    return out;
+  }
+  double cost = P.cost(u), mu = 0.0, nu = 2.0;
+  Matrix3X dpdu;
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxBoxQpSize> Jv(3, m);
+  BoxQpMatrix H0(m, m), H(m, m);
+  BoxQpVector g(m), lo(m), hi(m), v(m), delta(m);
+  VectorXd trial(m);
+  while (P.model.updates < o.max_updates) {
+    if (!P.model.jacobian(dpdu)) {
+      out.failure = P.model.failure;
+      return out;
+    }
+    // Scaled inputs v = u / s: residual [e / L; sqrt(w) v], Jacobian [dp/du diag(s) / L; sqrt(w) I].
+    Jv = dpdu * P.scale.asDiagonal() / P.length;
+    v = u.cwiseQuotient(P.scale);
+    const Vector3 e = (P.model.tip() - P.target) / P.length;
+    H0.noalias() = Jv.transpose() * Jv;
+    H0.diagonal().array() += P.weight + 1e-14 * H0.diagonal().maxCoeff();
+    g.noalias() = Jv.transpose() * e;
+    g += P.weight * v;
+    for (int k = 0; k < m; ++k) {
+      lo[k] = P.limits[k].first / P.scale[k] - v[k];
+      hi[k] = P.limits[k].second / P.scale[k] - v[k];
+    }
+    bool accepted = false;
+    double step = 0.0;
+    for (int trial_count = 0; trial_count < kMaxDampingTrials && !accepted; ++trial_count) {
+      H = H0;
+      H.diagonal().array() += mu;
+      delta.setZero();
+      if (!solve_box_qp(H, g, lo, hi, delta).converged) {
+        out.failure = "the bounded step (box QP) did not converge";
+        return out;
+      }
+      step = delta.lpNorm<Eigen::Infinity>();
+      if (step <= kStationaryStep) {  // no input can move: a KKT point
+        out.converged = P.model.solve_at(u.data());
+        return out;
+      }
+      const double predicted = -(2.0 * g.dot(delta) + delta.dot(H0 * delta));
+      for (int k = 0; k < m; ++k)
+        trial[k] = std::clamp((v[k] + delta[k]) * P.scale[k], P.limits[k].first, P.limits[k].second);
+      const bool solved = P.model.solve_at(trial.data());
+      const double new_cost = solved ? P.cost(trial) : cost;
+      const double rho = solved && predicted > 0.0 ? (cost - new_cost) / predicted : -1.0;
+      if (rho > kAcceptRatio) {
+        accepted = true;
+        u = trial;
+        const double fall = cost - new_cost;
+        cost = new_cost;
+        mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
+        nu = 2.0;
+        const bool near = (P.model.tip() - P.target).norm() <= o.tolerance;
+        if ((near && step <= o.step_tolerance) || fall <= 1e-15 * cost) {
+          out.converged = true;
+          return out;
+        }
+      } else {
+        mu = mu == 0.0 ? 1e-3 * H0.diagonal().maxCoeff() : mu * nu;
+        nu *= 2.0;
+      }
+    }
+    if (!accepted) {
+      P.model.solve_at(u.data());
+      out.failure = rodlab::format("no decrease within {} damping trials{}", kMaxDampingTrials,
+                                   P.model.failure.empty() ? "" : " (last statics failure: " + P.model.failure + ")");
+      return out;
+    }
+  }
+  out.failure = rodlab::format("no convergence within {} updates", o.max_updates);
+  return out;
+}
+
+/// The forward model as Ceres sees it: residuals [(p(u) - p*) / L; sqrt(w) u_k / s_k] and their
+/// Jacobian [dp/du / L; sqrt(w) diag(1 / s_k)].
+class CeresTipCost final : public ceres::CostFunction {
+ public:
+  explicit CeresTipCost(const Problem& P) : P_(P), sqrt_w_(std::sqrt(P.weight)) {
+    set_num_residuals(3 + static_cast<int>(P.scale.size()));
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(P.scale.size()));
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const double* u = parameters[0];
+    const int m = static_cast<int>(P_.scale.size());
+    if (!P_.model.solve_at(u)) return false;
+    Eigen::Map<Vector3> tip_rows(residuals);
+    tip_rows = (P_.model.tip() - P_.target) / P_.length;
+    for (int k = 0; k < m; ++k) residuals[3 + k] = sqrt_w_ * u[k] / P_.scale[k];
+    if (!jacobians || !jacobians[0]) return true;
+    if (!P_.model.jacobian(dpdu_)) return false;
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(jacobians[0], 3 + m, m);
+    J.topRows<3>() = dpdu_ / P_.length;
+    J.bottomRows(m) = (sqrt_w_ * P_.scale.cwiseInverse()).asDiagonal();
+    return true;
+  }
+
+ private:
+  const Problem& P_;
+  double sqrt_w_;
+  mutable Matrix3X dpdu_;
+};
+
+/// Ceres stops (successfully) once the tip is within tolerance and the last step was small.
+class CeresReachStop final : public ceres::IterationCallback {
+ public:
+  CeresReachStop(const Problem& P, double tolerance, double step_bound)
+      : P_(P), tolerance_(tolerance), step_bound_(step_bound) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    if (summary.iteration == 0 || !summary.step_is_successful) return ceres::SOLVER_CONTINUE;
+    // The model holds the accepted point: Ceres evaluated its Jacobian there last.
+    const bool near = (P_.model.tip() - P_.target).norm() <= tolerance_;
+    return near && summary.step_norm <= step_bound_ ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                                                    : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const Problem& P_;
+  double tolerance_, step_bound_;
+};
+
+/// The same problem through Ceres (method ceres; for comparison, inverse_statics.hpp).
+Outcome ceres_solve(const Problem& P, const InverseStaticsOptions& o, VectorXd& u) {
+  const int m = static_cast<int>(u.size());
+  CeresTipCost cost(P);
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  problem.AddResidualBlock(&cost, nullptr, u.data());
+  for (int k = 0; k < m; ++k) {
+    problem.SetParameterLowerBound(u.data(), k, P.limits[k].first);
+    problem.SetParameterUpperBound(u.data(), k, P.limits[k].second);
+  }
+  CeresReachStop stop(P, o.tolerance, o.step_tolerance * P.scale.norm());
+  ceres::Solver::Options so;
+  so.minimizer_type = ceres::TRUST_REGION;
+  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.initial_trust_region_radius = kCeresInitialRadius;
+  so.max_num_iterations = o.max_updates;
+  so.function_tolerance = 1e-12;
+  so.gradient_tolerance = 1e-14;
+  so.parameter_tolerance = 1e-10;
+  so.num_threads = 1;
+  so.logging_type = ceres::SILENT;
+  so.callbacks.push_back(&stop);
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  Outcome out;
+  const bool solved = P.model.solve_at(u.data());  // Ceres may end on a rejected trial point
+  out.converged = solved && summary.IsSolutionUsable() && summary.termination_type != ceres::NO_CONVERGENCE;
+  if (!out.converged)
+    out.failure = solved ? "Ceres: " + summary.message
+                         : "the statics did not converge at the returned inputs: " + P.model.failure;
+  return out;
+}
+
+std::vector<std::pair<double, double>> input_limits(const scene::Scene& scene_in) {
+  scene::Scene scene = scene_in;  // workspace_inputs points into the scene it is given
+  std::vector<std::pair<double, double>> limits;
+  try {
+    for (const auto& in : statics::workspace_inputs(scene)) limits.push_back(in.limits);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(rodlab::format("inverse statics: {}", e.what()));
+  }
+  RODLAB_THROW_UNLESS(static_cast<int>(limits.size()) <= kMaxBoxQpSize,
+                      "inverse statics: at most {} actuators, got {}", kMaxBoxQpSize, limits.size());
+  for (std::size_t k = 0; k < limits.size(); ++k)
+    RODLAB_THROW_UNLESS(limits[k].first <= limits[k].second && std::isfinite(limits[k].first) &&
+                            std::isfinite(limits[k].second),
+                        "inverse statics: actuators.{}: limits [{:g}, {:g}] are not an interval", k,
+                        limits[k].first, limits[k].second);
+  return limits;
+}
+
+statics::ChebyshevOptions forward_options(const InverseStaticsOptions& o) {
+  RODLAB_THROW_UNLESS(o.statics.scheme == "chebyshev",
+                      "inverse statics runs on `chebyshev` (its Newton system gives the exact "
+                      "sensitivities), got `{}`",
+                      o.statics.scheme);
+  RODLAB_THROW_UNLESS(o.tolerance > 0.0 && o.regularization >= 0.0 && o.max_updates >= 1 && o.step_tolerance > 0.0,
+                      "inverse statics: tolerance > 0, regularization >= 0, max_updates >= 1 and "
+                      "step_tolerance > 0 (got {:g}, {:g}, {}, {:g})",
+                      o.tolerance, o.regularization, o.max_updates, o.step_tolerance);
+  return {o.statics.nodes, o.statics.tol, o.statics.max_iterations, 0};
+}
+
+}  // namespace
+
+struct InverseStatics::Impl {
+  Impl(const scene::Scene& scene, const InverseStaticsOptions& o)
+      : options(o),
+        limits(input_limits(scene)),
+        tracker(statics::StaticProblem::from_scene(scene, o.statics.time), forward_options(o)),
+        length(scene.rod.length) {
+    const int m = static_cast<int>(limits.size());
+    scale.resize(m);
+    u = VectorXd::Zero(m);
+    for (int k = 0; k < m; ++k) {
+      const auto [lo, hi] = limits[k];
+      scale[k] = std::max(std::abs(lo), std::abs(hi));
+      if (!(scale[k] > 0.0)) scale[k] = 1.0;
+      u[k] = std::clamp(0.0, lo, hi);
+    }
+    model.emplace(tracker, scale);
+  }
+
+  InverseStaticsResult solve(const Vector3& target, const VectorXd& u0);
+
+  InverseStaticsOptions options;
+  std::vector<std::pair<double, double>> limits;
+  statics::ChebyshevTracker tracker;
+  double length;
+  VectorXd scale, u;
+  std::optional<TipModel> model;
+};
+
+InverseStaticsResult InverseStatics::Impl::solve(const Vector3& target, const VectorXd& u0) {
+  const auto start = std::chrono::steady_clock::now();
+  const int m = static_cast<int>(limits.size());
+  RODLAB_THROW_UNLESS(u0.size() == m, "inverse statics: expected {} initial inputs, got {}", m, u0.size());
+  RODLAB_THROW_UNLESS(target.allFinite(), "inverse statics: the target is not finite");
+  InverseStaticsResult out;
+  out.u = u0;
+  for (int k = 0; k < m; ++k) out.u[k] = std::clamp(out.u[k], limits[k].first, limits[k].second);
+  model->reset_counters();
+  const Problem P{*model, target, scale, options.regularization, length, limits};
+  const Outcome o = options.method == InverseStaticsMethod::ceres ? ceres_solve(P, options, out.u)
+                                                                  : gauss_newton(P, options, out.u);
+  const bool solved = model->solve_at(out.u.data());
+  out.updates = model->updates;
+  out.statics_solves = model->solves;
+  out.newton_iterations = model->newton_iterations;
+  out.tip = model->tip();
+  out.error = (out.tip - target).norm();
+  out.converged = solved && o.converged;
+  out.reached = solved && out.error <= options.tolerance;
+  if (!solved) {
+    out.reason = "the statics did not converge at the returned inputs: " + model->failure;
+  } else if (!out.converged) {
+    out.reason = o.failure;
+  } else if (!out.reached) {
+    std::string at_limits;
+    for (int k = 0; k < m; ++k)
+      if (out.u[k] <= limits[k].first || out.u[k] >= limits[k].second)
+        at_limits += rodlab::format("{}{}", at_limits.empty() ? "" : ", ", k);
+    out.reason = rodlab::format(
+        "unreachable within the input limits: the closest tip is {:g} m from the target (tolerance "
+        "{:g} m){}",
+        out.error, options.tolerance,
+        at_limits.empty() ? std::string() : " with actuators " + at_limits + " at their limits");
+  }
+  if (solved) u = out.u;
+  out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+InverseStatics::InverseStatics(const scene::Scene& scene, const InverseStaticsOptions& options)
+    : impl_(std::make_unique<Impl>(scene, options)) {}
+InverseStatics::~InverseStatics() = default;
+InverseStatics::InverseStatics(InverseStatics&&) noexcept = default;
+InverseStatics& InverseStatics::operator=(InverseStatics&&) noexcept = default;
+
+int InverseStatics::inputs() const { return static_cast<int>(impl_->limits.size()); }
+const std::vector<std::pair<double, double>>& InverseStatics::limits() const { return impl_->limits; }
+InverseStaticsResult InverseStatics::solve(const Vector3& target_world) {
+  return impl_->solve(target_world, impl_->u);
+}
+InverseStaticsResult InverseStatics::solve(const Vector3& target_world, const Eigen::VectorXd& u0) {
+  return impl_->solve(target_world, u0);
+}
+
+InverseStaticsResult solve_inverse_statics(const scene::Scene& scene, const Vector3& target_world,
+                                           const InverseStaticsOptions& options, const Eigen::VectorXd& u0) {
+  InverseStatics solver(scene, options);
+  return u0.size() == 0 ? solver.solve(target_world) : solver.solve(target_world, u0);
+}
+
+}  // namespace rodlab::solvers::control
