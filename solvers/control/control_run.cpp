@@ -144,6 +144,7 @@ void run_quasi_static(const scene::Scene& scene, const ControlRunOptions& o, Con
   const scene::Control& c = o.control;
   InverseStaticsOptions io;
   io.tolerance = c.threshold * scene.rod.length;
+  io.statics.nodes = o.solver.nodes;
   InverseStatics solver(scene, io);
   const bool track = c.task == scene::ControlTask::track;
   const int episodes = track ? 1 : static_cast<int>(out.targets.points.size());
@@ -212,7 +213,7 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
   out.controller = options.controller;
   out.task = task_name(c.task);
   out.scheme = mpc ? options.solver.scheme : InverseStaticsOptions{}.statics.scheme;
-  out.nodes = mpc ? options.solver.nodes : InverseStaticsOptions{}.statics.nodes;
+  out.nodes = options.solver.nodes;
   out.dt_control = c.dt_control;
   out.horizon = mpc ? c.horizon : 0;
   out.converged = true;
@@ -229,10 +230,6 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
   } catch (const WallTimeExceeded& e) {  // common/deadline.hpp: the rows so far stay
     out.converged = false;
     out.reason = e.what();
-    if (!out.episodes.empty() || !out.series.t.empty()) {
-      ControlEpisode last;
-      close_episode(out, last, out.series.t.size());
-    }
   }
   if (out.converged && !out.reason)
     for (const auto& e : out.episodes)
