@@ -205,7 +205,8 @@ lie::Matrix6 DynamicProblem::embedded_viscosity(double s) const {
 }
 
 Vector6 DynamicProblem::solve_strain(const lie::Matrix6& Kt, const Vector6& xi_ref,
-                                     const Vector6& Lambda, double s, const Forces& F) const {
+                                     const Vector6& Lambda, double s, const Forces& F,
+                                     const Vector6* guess) const {
   return solve_tendon_law(Kt, xi_ref, Lambda, is_kirchhoff(),
                           [&](const Vector6& xi, Vector6& r, lie::Matrix6& J) {
                             for (std::size_t k = 0; k < actuators_.size(); ++k) {
@@ -215,7 +216,8 @@ Vector6 DynamicProblem::solve_strain(const lie::Matrix6& Kt, const Vector6& xi_r
                               r += F[k] * path.unit_wrench(s, xi);
                               J += F[k] * path.unit_wrench_jacobian(s, xi);
                             }
-                          });
+                          },
+                          guess);
 }
 
 lie::Matrix6 DynamicProblem::cell_inertia(double a, double b, double s) const {

@@ -3,7 +3,8 @@
 //
 //     Kt (xi - xi_ref) + sum_k F_k c_k(xi) = Lambda,
 //
-// by Newton from xi_ref. Kt is the rod's (effective) stiffness: K in the statics (plus embedded
+// by Newton from xi_ref (or a given guess: the last iterate of an outer iteration, from which
+// Newton needs one or two steps instead of three to five). Kt is the rod's (effective) stiffness: K in the statics (plus embedded
 // muscle stiffness), K + 2 V / dt in an implicit-midpoint step. Kirchhoff rods solve the moment
 // rows for omega only and keep nu = nu_ref. `add_tendons(xi, r, J)` adds sum_k F_k c_k(xi) to r
 // and its Jacobian to J.
@@ -15,9 +16,11 @@ namespace rodlab::solvers {
 
 template <class AddTendons>
 lie::Vector6 solve_tendon_law(const lie::Matrix6& Kt, const lie::Vector6& xi_ref,
-                              const lie::Vector6& Lambda, bool kirchhoff, AddTendons add_tendons) {
+                              const lie::Vector6& Lambda, bool kirchhoff, AddTendons add_tendons,
+                              const lie::Vector6* guess = nullptr) {
   constexpr int kMaxIterations = 30;
-  lie::Vector6 xi = xi_ref, r;
+  lie::Vector6 xi = guess != nullptr ? *guess : xi_ref, r;
+  if (kirchhoff) xi.tail<3>() = xi_ref.tail<3>();
   lie::Matrix6 J;
   for (int it = 0; it < kMaxIterations; ++it) {
     r = Kt * (xi - xi_ref) - Lambda;

@@ -225,9 +225,10 @@ class DynamicProblem {
     }
     return solve_strain(lie::Matrix6(Kt.asDiagonal()), xi_ref, Lambda, s, forces(t));
   }
-  /// The same with a full Kt (embedded muscles) and the forces F.
+  /// The same with a full Kt (embedded muscles) and the forces F; Newton starts from `guess`
+  /// when given (tendon_law.hpp).
   Vector6 solve_strain(const lie::Matrix6& Kt, const Vector6& xi_ref, const Vector6& Lambda,
-                       double s, const Forces& F) const;
+                       double s, const Forces& F, const Vector6* guess = nullptr) const;
   /// Point wrench on the rod where cables enter from outside at s0 > 0: the rod's internal
   /// wrench is continuous there, so the node that carries the jump of the total internal wrench
   /// gets it back as an external load, -F c(xi) (compare StaticProblem::entry_jump).
