@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <span>
 #include <stdexcept>
 
 #include "rodlab/check.hpp"
 #include "rodlab/scene/trajectory.hpp"
 #include "rodlab/solvers/common/deadline.hpp"
 #include "rodlab/solvers/control/inverse_statics.hpp"
+#include "rodlab/solvers/control/lqr_hold.hpp"
 #include "rodlab/solvers/control/nlsq_mpc.hpp"
 #include "rodlab/solvers/control/plant.hpp"
 #include "rodlab/solvers/control/static_targets.hpp"
@@ -76,8 +79,83 @@ void close_episode(ControlResult& out, ControlEpisode& e, std::size_t first_row)
   e.mean_error = sum / e.steps;
 }
 
-/// nlsq-mpc on the dynamics: every episode from the plant's initial state.
-void run_mpc(const scene::Scene& scene, const ControlRunOptions& o, ControlResult& out) {
+/// One control decision of a controller of the dynamic plant.
+struct Decision {
+  std::string failure;  ///< empty: u is the input to apply
+  Eigen::VectorXd u;
+  int iterations = 0;
+};
+
+/// A controller of the dynamic plant (run_dynamic): nlsq-mpc, lqr.
+class DynamicController {
+ public:
+  virtual ~DynamicController() = default;
+  /// A new episode from the plant's initial state towards `target` (reach, hold; the
+  /// trajectory's start for track); a non-empty return is why the episode cannot start.
+  virtual std::string start(const Plant& plant, const Vector3& target) = 0;
+  /// The input of the coming control step; `horizon` holds the targets at its end and after.
+  virtual Decision decide(Plant& plant, std::span<const Vector3> horizon) = 0;
+};
+
+class MpcController final : public DynamicController {
+ public:
+  MpcController(const Plant& plant, const scene::Control& c) : mpc_(plant, options(c)) {}
+  std::string start(const Plant& plant, const Vector3&) override {
+    mpc_.reset(plant);
+    return {};
+  }
+  Decision decide(Plant& plant, std::span<const Vector3> horizon) override {
+    const MpcPlan plan = mpc_.plan(plant, horizon);
+    return {plan.ok ? std::string() : plan.reason, plan.u, plan.iterations};
+  }
+
+ private:
+  static MpcOptions options(const scene::Control& c) {
+    MpcOptions mo;
+    mo.horizon = c.horizon;
+    mo.input_rate_weight = c.weights.input_rate;
+    mo.input_weight = c.weights.input;
+    mo.terminal_weight = c.weights.terminal;
+    return mo;
+  }
+  NlsqMpc mpc_;
+};
+
+/// Reach and hold by infinite-horizon LQR about the equilibrium of the inverse statics' inputs
+/// for the target (lqr_hold.hpp); the gain is designed at the episode's start.
+class LqrController final : public DynamicController {
+ public:
+  LqrController(const scene::Scene& scene, const PlantOptions& po, const scene::Control& c)
+      : scene_(scene), po_(po), statics_(scene, statics_options_for(c, scene, po)) {
+    weights_.input = std::max(c.weights.input, LqrWeights{}.input);
+  }
+  std::string start(const Plant&, const Vector3& target) override {
+    const InverseStaticsResult equilibrium = statics_.solve(target);
+    if (!equilibrium.converged || !equilibrium.reached) return equilibrium.reason;
+    gain_ = hold_gain(scene_, po_, equilibrium.u, weights_);
+    return gain_.ok ? std::string() : gain_.reason;
+  }
+  Decision decide(Plant& plant, std::span<const Vector3>) override {
+    return {{}, gain_.control(plant), 1};
+  }
+
+ private:
+  static InverseStaticsOptions statics_options_for(const scene::Control& c, const scene::Scene& s,
+                                                   const PlantOptions& po) {
+    InverseStaticsOptions io;
+    io.tolerance = c.threshold * s.rod.length;
+    io.statics.nodes = po.solver.nodes;
+    return io;
+  }
+  const scene::Scene& scene_;
+  PlantOptions po_;
+  InverseStatics statics_;
+  LqrWeights weights_;
+  HoldGain gain_;
+};
+
+/// A controller on the dynamic plant: every episode from the plant's initial state.
+void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlResult& out) {
   const scene::Control& c = o.control;
   PlantOptions po;
   po.solver = o.solver;
@@ -85,22 +163,20 @@ void run_mpc(const scene::Scene& scene, const ControlRunOptions& o, ControlResul
   po.dt_control = c.dt_control;
   Plant plant(scene, po);
   const PlantSnapshot initial = plant.snapshot();
-  MpcOptions mo;
-  mo.horizon = c.horizon;
-  mo.input_rate_weight = c.weights.input_rate;
-  mo.input_weight = c.weights.input;
-  mo.terminal_weight = c.weights.terminal;
-  NlsqMpc mpc(plant, mo);
+  std::unique_ptr<DynamicController> controller;
+  if (o.controller == "lqr")
+    controller = std::make_unique<LqrController>(scene, po, c);
+  else
+    controller = std::make_unique<MpcController>(plant, c);
   const double L = plant.length(), threshold = c.threshold * L, dt = c.dt_control;
   const bool track = c.task == scene::ControlTask::track;
   const int episodes = track ? 1 : static_cast<int>(out.targets.points.size());
   const int steps = track ? std::max(1, static_cast<int>(std::ceil(
                                             scene::duration(*c.trajectory) / dt - 1e-9)))
                           : c.max_steps;
-  std::vector<Vector3> horizon(c.horizon);
+  std::vector<Vector3> horizon(std::max(1, c.horizon));
   for (int e = 0; e < episodes && out.converged; ++e) {
     plant.restore(initial);
-    mpc.reset(plant);
     auto target_at = [&](double t) {
       return track ? scene::position(*c.trajectory, t) : out.targets.points[e];
     };
@@ -108,25 +184,31 @@ void run_mpc(const scene::Scene& scene, const ControlRunOptions& o, ControlResul
     episode.target = target_at(0.0);
     const std::size_t first = out.series.t.size();
     int below = 0;
+    auto t0 = Clock::now();  // the episode's set-up counts in its first step
+    if (std::string why = controller->start(plant, episode.target); !why.empty()) {
+      episode.reason = why;
+      out.episodes.push_back(episode);
+      continue;
+    }
     for (int k = 0; k < steps; ++k) {
       const double t = (k + 1) * dt;  // the step ends at t
-      for (int i = 0; i < c.horizon; ++i) horizon[i] = target_at(t + i * dt);
-      const auto t0 = Clock::now();
-      const MpcPlan plan = mpc.plan(plant, horizon);
+      for (std::size_t i = 0; i < horizon.size(); ++i) horizon[i] = target_at(t + i * dt);
+      if (k > 0) t0 = Clock::now();
+      const Decision d = controller->decide(plant, horizon);
       const double solve_time = seconds_since(t0);
-      if (!plan.ok) {
+      if (!d.failure.empty()) {
         out.converged = false;
-        out.reason = episode.reason = plan.reason;
+        out.reason = episode.reason = d.failure;
         break;
       }
-      plant.set_input(plan.u);
+      plant.set_input(d.u);
       const dynamics::StepStatus status = plant.advance();
       if (!status.ok) {
         out.converged = false;
         out.reason = episode.reason = "the plant's step failed: " + status.reason;
         break;
       }
-      record(out, e, t, plan.u, plant.tip(), target_at(t), solve_time, plan.iterations);
+      record(out, e, t, d.u, plant.tip(), target_at(t), solve_time, d.iterations);
       const double error = out.series.error.back();
       below = error < threshold ? below + 1 : 0;
       if (c.task == scene::ControlTask::reach && below > 0) break;
@@ -198,9 +280,14 @@ void summarise(const ControlResult& in, double L, double dt_control, result::Con
 result::ControlResult run_control(const scene::Scene& scene, const ControlRunOptions& options) {
   const scene::Control& c = options.control;
   const bool mpc = options.controller == "nlsq-mpc";
-  RODLAB_THROW_UNLESS(mpc || options.controller == "quasi-static",
-                      "--controller: '{}' is not available yet (built: quasi-static, nlsq-mpc)",
+  const bool dynamic = mpc || options.controller == "lqr";
+  RODLAB_THROW_UNLESS(dynamic || options.controller == "quasi-static",
+                      "--controller: '{}' is not available yet (built: quasi-static, nlsq-mpc, "
+                      "lqr)",
                       options.controller);
+  RODLAB_THROW_UNLESS(options.controller != "lqr" || c.task != scene::ControlTask::track,
+                      "--controller lqr: reach and hold only (it regulates about the target's "
+                      "equilibrium); track with nlsq-mpc");
   RODLAB_THROW_UNLESS(c.task != scene::ControlTask::track || c.trajectory.has_value(),
                       "control.task track needs control.trajectory");
   RODLAB_THROW_UNLESS(c.horizon >= 1 && c.dt_control > 0.0 && c.threshold > 0.0 &&
@@ -212,7 +299,7 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
   out.scene = scene.name;
   out.controller = options.controller;
   out.task = task_name(c.task);
-  out.scheme = mpc ? options.solver.scheme : InverseStaticsOptions{}.statics.scheme;
+  out.scheme = dynamic ? options.solver.scheme : InverseStaticsOptions{}.statics.scheme;
   out.nodes = options.solver.nodes;
   out.dt_control = c.dt_control;
   out.horizon = mpc ? c.horizon : 0;
@@ -223,8 +310,8 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
     choose_targets(scene, c, out);
   try {
     const DeadlineScope deadline(options.solver.max_wall_time);  // --max-wall-time
-    if (mpc)
-      run_mpc(scene, options, out);
+    if (dynamic)
+      run_dynamic(scene, options, out);
     else
       run_quasi_static(scene, options, out);
   } catch (const WallTimeExceeded& e) {  // common/deadline.hpp: the rows so far stay

@@ -52,6 +52,21 @@ BOOST_AUTO_TEST_CASE(quasi_static_reaches_drawn_targets) {
   for (const auto& e : j["episodes"]) BOOST_TEST(double(e["final_error"]) < 0.005);
 }
 
+// Reach and hold by LQR about each target's equilibrium (two targets drawn from the static
+// workspace, implicit midpoint N = 10): both held within 5 % of L for hold_steps steps, every
+// tension inside its limits.
+BOOST_AUTO_TEST_CASE(lqr_holds_drawn_targets) {
+  Sandbox box;
+  const Run r = box.run("control " + kScene + " --controller lqr --task hold --targets 2 "
+                                              "--nodes 10 --out hold.json");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const auto j = nlohmann::json::parse(read(box.work / "hold.json"));
+  BOOST_TEST(j["controller"] == "lqr");
+  BOOST_TEST(j["summary"]["success_rate"] == 1.0);
+  for (const auto& u : j["series"]["u"])
+    for (double v : u) BOOST_TEST((v >= 0.0 && v <= 0.5));
+}
+
 // A target beyond the rod's length: the closest feasible tip, exit 1, the reason in the result.
 BOOST_AUTO_TEST_CASE(unreachable_target_exits_1_with_a_reason) {
   Sandbox box;
@@ -67,7 +82,9 @@ BOOST_AUTO_TEST_CASE(unreachable_target_exits_1_with_a_reason) {
 
 BOOST_AUTO_TEST_CASE(bad_input_is_refused) {
   Sandbox box;
-  expect_bad_input(box, "control " + kScene + " --controller lqr --out x.json", {"--controller", "lqr"});
+  expect_bad_input(box, "control " + kScene + " --controller ilqr --out x.json", {"--controller", "ilqr"});
+  expect_bad_input(box, "control " + kScene + " --controller lqr --task track --out x.json",
+                   {"lqr", "track"});
   expect_bad_input(box, "control " + kScene + " --controller pid --out x.json", {"--controller"});
   expect_bad_input(box, "control " + kScene + " --horizon 0 --out x.json", {"--horizon"});
   expect_bad_input(box, "control " + kScene + " --dt-control -1 --out x.json", {"--dt-control"});

@@ -12,7 +12,8 @@
 //
 // Targets: control.targets, else `target_count` drawn with `seed` from the static workspace
 // (static_targets.hpp: reachable by construction). Controllers: `nlsq-mpc` (nlsq_mpc.hpp) on a
-// dynamics scheme; `quasi-static` (inverse_statics.hpp) on the statics: one inverse-statics
+// dynamics scheme; `lqr` (reach, hold; lqr_hold.hpp) about the equilibrium of the inverse
+// statics' inputs for each target, its gain designed at the episode's start; `quasi-static` (inverse_statics.hpp) on the statics: one inverse-statics
 // solve per target (reach, hold: `steps` counts its updates) or per control step (track).
 // A solver failure ends the run (converged false, the reason); a target the quasi-static
 // controller cannot reach (outside the workspace) is reported with its closest tip and reason.
@@ -25,7 +26,7 @@
 namespace rodlab::solvers::control {
 
 struct ControlRunOptions {
-  std::string controller = "nlsq-mpc";  ///< quasi-static | nlsq-mpc (lqr, ilqr: not yet)
+  std::string controller = "nlsq-mpc";  ///< quasi-static | nlsq-mpc | lqr (ilqr: not yet)
   scene::Control control;               ///< the task and its settings
   /// The dynamics scheme of the plant (scheme, nodes, tol, grid, ...); its max_iterations is
   /// raised to the plant's (plant.hpp).
