@@ -23,7 +23,7 @@ constexpr std::array<std::string_view, 3> kTasks{"reach", "hold", "track"};
 
 constexpr OptionSpec kControllerOption{
     "--controller", "NAME",
-    "quasi-static | nlsq-mpc | lqr (ilqr, policy: not yet built); default: nlsq-mpc"};
+    "quasi-static | nlsq-mpc | lqr | ilqr (policy: not yet built); default: nlsq-mpc"};
 constexpr OptionSpec kTaskOption{"--task", "reach|hold|track", "the task; default: control.task"};
 constexpr OptionSpec kHorizonOption{"--horizon", "H",
                                     "control steps predicted, integer >= 1; default: control.horizon"};
@@ -117,14 +117,15 @@ const Command& control_command() {
   static const Command command{
       "control",
       "SCENE [--controller NAME] [--task reach|hold|track] [options]",
-      "drive the rod's tip with a controller (inverse statics, NLSQ-MPC, LQR)",
+      "drive the rod's tip with a controller (inverse statics, NLSQ-MPC, LQR, iLQR)",
       "Runs a controller on a task of the scene's control section (docs/control.md):\n"
       "reach (each target until the tip is within control.threshold * L, at most\n"
       "control.max_steps control steps), hold (within the threshold for control.hold_steps\n"
       "steps in a row) or track (control.trajectory). Targets are control.targets, else\n"
       "--targets K (or control.target_count) drawn with --seed from the static workspace.\n"
       "nlsq-mpc plans --horizon steps of --dt-control on a dynamics scheme (--scheme, else\n"
-      "dynamics.scheme, else implicit-midpoint); lqr (reach, hold) regulates about the\n"
+      "dynamics.scheme, else implicit-midpoint); ilqr plans the same horizon by iterative\n"
+      "LQR with input limits; lqr (reach, hold) regulates about the\n"
       "equilibrium of the inverse statics' inputs for each target; quasi-static solves the\n"
       "inverse statics (chebyshev). The result (rodlab.control-result/1) is printed as a summary and, with\n"
       "--out, written atomically as JSON or CSV (one row per control step).\n"

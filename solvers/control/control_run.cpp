@@ -11,10 +11,12 @@
 #include "rodlab/check.hpp"
 #include "rodlab/scene/trajectory.hpp"
 #include "rodlab/solvers/common/deadline.hpp"
+#include "rodlab/solvers/control/ilqr.hpp"
 #include "rodlab/solvers/control/inverse_statics.hpp"
 #include "rodlab/solvers/control/lqr_hold.hpp"
 #include "rodlab/solvers/control/nlsq_mpc.hpp"
 #include "rodlab/solvers/control/plant.hpp"
+#include "rodlab/solvers/control/plant_ilqr.hpp"
 #include "rodlab/solvers/control/static_targets.hpp"
 
 namespace rodlab::solvers::control {
@@ -121,6 +123,39 @@ class MpcController final : public DynamicController {
   NlsqMpc mpc_;
 };
 
+/// iLQR (ilqr.hpp) over the horizon with the plant as its model (plant_ilqr.hpp), warm-started
+/// from the last plan shifted by a step; the first input is applied.
+class IlqrController final : public DynamicController {
+ public:
+  IlqrController(Plant& plant, const scene::Control& c)
+      : model_(plant, c.horizon, c.weights.input, c.weights.terminal), plan_(c.horizon) {
+    options_.max_iterations = kIterationsPerStep;
+    options_.tolerance = 1e-6;
+  }
+  std::string start(const Plant& plant, const Vector3&) override {
+    std::fill(plan_.begin(), plan_.end(), plant.input());
+    return {};
+  }
+  Decision decide(Plant&, std::span<const Vector3> horizon) override {
+    if (plan_.size() > 1) {  // shifted by a step, the last input repeated
+      std::rotate(plan_.begin(), plan_.begin() + 1, plan_.end());
+      plan_.back() = plan_[plan_.size() - 2];
+    }
+    model_.start(horizon);
+    const IlqrResult r = solve_ilqr(model_, plan_, options_);
+    model_.reset();  // the plant back where it stands
+    if (!r.ok) return {r.reason, {}, r.iterations};
+    plan_ = r.u;
+    return {{}, plan_.front(), r.iterations};
+  }
+
+ private:
+  static constexpr int kIterationsPerStep = 10;
+  PlantIlqrModel model_;
+  std::vector<Eigen::VectorXd> plan_;
+  IlqrOptions options_;
+};
+
 /// Reach and hold by infinite-horizon LQR about the equilibrium of the inverse statics' inputs
 /// for the target (lqr_hold.hpp); the gain is designed at the episode's start.
 class LqrController final : public DynamicController {
@@ -166,6 +201,8 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
   std::unique_ptr<DynamicController> controller;
   if (o.controller == "lqr")
     controller = std::make_unique<LqrController>(scene, po, c);
+  else if (o.controller == "ilqr")
+    controller = std::make_unique<IlqrController>(plant, c);
   else
     controller = std::make_unique<MpcController>(plant, c);
   const double L = plant.length(), threshold = c.threshold * L, dt = c.dt_control;
@@ -280,10 +317,10 @@ void summarise(const ControlResult& in, double L, double dt_control, result::Con
 result::ControlResult run_control(const scene::Scene& scene, const ControlRunOptions& options) {
   const scene::Control& c = options.control;
   const bool mpc = options.controller == "nlsq-mpc";
-  const bool dynamic = mpc || options.controller == "lqr";
+  const bool dynamic = mpc || options.controller == "lqr" || options.controller == "ilqr";
   RODLAB_THROW_UNLESS(dynamic || options.controller == "quasi-static",
                       "--controller: '{}' is not available yet (built: quasi-static, nlsq-mpc, "
-                      "lqr)",
+                      "lqr, ilqr)",
                       options.controller);
   RODLAB_THROW_UNLESS(options.controller != "lqr" || c.task != scene::ControlTask::track,
                       "--controller lqr: reach and hold only (it regulates about the target's "
@@ -302,7 +339,7 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
   out.scheme = dynamic ? options.solver.scheme : InverseStaticsOptions{}.statics.scheme;
   out.nodes = options.solver.nodes;
   out.dt_control = c.dt_control;
-  out.horizon = mpc ? c.horizon : 0;
+  out.horizon = mpc || options.controller == "ilqr" ? c.horizon : 0;
   out.converged = true;
   if (c.task == scene::ControlTask::track)
     out.targets.drawn_from = result::TargetSource::trajectory, out.seed = c.seed;
