@@ -28,6 +28,12 @@ constexpr double kAcceptRatio = 1e-4;
 constexpr int kMaxDampingTrials = 30;
 /// Nothing moves: the box QP's step is below this (scaled inputs): a KKT point.
 constexpr double kStationaryStep = 1e-12;
+/// The first damping after a rejected undamped step, relative to the largest diagonal of J^T J.
+constexpr double kInitialDamping = 1e-3;
+/// Keeps the step's matrix positive definite without regularisation (relative to its diagonal).
+constexpr double kDiagonalFloor = 1e-14;
+/// An accepted step that lowers the cost by less than this fraction: converged (rounding level).
+constexpr double kStalledFall = 1e-15;
 /// Ceres: initial trust-region radius, pure Gauss-Newton steps at first (with damping above the
 /// regularisation weight the step would barely move along the null space of J).
 constexpr double kCeresInitialRadius = 1e12;
@@ -127,7 +133,7 @@ Outcome gauss_newton(const Problem& P, const InverseStaticsOptions& o, VectorXd&
     v = u.cwiseQuotient(P.scale);
     const Vector3 e = (P.model.tip() - P.target) / P.length;
     H0.noalias() = Jv.transpose() * Jv;
-    H0.diagonal().array() += P.weight + 1e-14 * H0.diagonal().maxCoeff();
+    H0.diagonal().array() += P.weight + kDiagonalFloor * H0.diagonal().maxCoeff();
     g.noalias() = Jv.transpose() * e;
     g += P.weight * v;
     for (int k = 0; k < m; ++k) {
@@ -163,12 +169,12 @@ Outcome gauss_newton(const Problem& P, const InverseStaticsOptions& o, VectorXd&
         mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
         nu = 2.0;
         const bool near = (P.model.tip() - P.target).norm() <= o.tolerance;
-        if ((near && step <= o.step_tolerance) || fall <= 1e-15 * cost) {
+        if ((near && step <= o.step_tolerance) || fall <= kStalledFall * cost) {
           out.converged = true;
           return out;
         }
       } else {
-        mu = mu == 0.0 ? 1e-3 * H0.diagonal().maxCoeff() : mu * nu;
+        mu = mu == 0.0 ? kInitialDamping * H0.diagonal().maxCoeff() : mu * nu;
         nu *= 2.0;
       }
     }
@@ -284,6 +290,12 @@ std::vector<std::pair<double, double>> input_limits(const scene::Scene& scene_in
   return limits;
 }
 
+/// The options, after checking that the scene's tip is free (a clamped tip has no target).
+const InverseStaticsOptions& free_tip(const scene::Scene& scene, const InverseStaticsOptions& o) {
+  RODLAB_THROW_UNLESS(!scene.tip_clamped(), "inverse statics needs a free tip (`tip: free`), got a clamped one");
+  return o;
+}
+
 statics::ChebyshevOptions forward_options(const InverseStaticsOptions& o) {
   RODLAB_THROW_UNLESS(o.statics.scheme == "chebyshev",
                       "inverse statics runs on `chebyshev` (its Newton system gives the exact "
@@ -300,7 +312,7 @@ statics::ChebyshevOptions forward_options(const InverseStaticsOptions& o) {
 
 struct InverseStatics::Impl {
   Impl(const scene::Scene& scene, const InverseStaticsOptions& o)
-      : options(o),
+      : options(free_tip(scene, o)),
         limits(input_limits(scene)),
         tracker(statics::StaticProblem::from_scene(scene, o.statics.time), forward_options(o)),
         length(scene.rod.length) {

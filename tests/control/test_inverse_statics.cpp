@@ -212,8 +212,19 @@ actuators:
   }
 }
 
-// Bad input: an actuator without limits is named in the message.
+// Bad input: an actuator without limits is named in the message; a clamped tip, another scheme
+// and a wrong number of initial inputs are refused.
 BOOST_AUTO_TEST_CASE(missing_limits_name_the_actuator) {
+  {
+    scene::Scene clamped = cable_driven();
+    clamped.tip = scene::ClampedTip{};
+    BOOST_CHECK_THROW(InverseStatics{clamped}, std::invalid_argument);
+    InverseStaticsOptions o;
+    o.statics.scheme = "rkmk-rk4";
+    BOOST_CHECK_THROW(InverseStatics(cable_driven(), o), std::invalid_argument);
+    InverseStatics solver(cable_driven());
+    BOOST_CHECK_THROW(solver.solve(Vector3(0, 0, 0.1), Eigen::VectorXd::Zero(3)), std::invalid_argument);
+  }
   scene::Scene scene = cable_driven();
   std::get<scene::Cable>(scene.actuators[2]).limits.reset();
   try {

@@ -85,7 +85,7 @@ struct InverseStaticsResult {
 class InverseStatics {
  public:
   /// Throws std::invalid_argument naming the actuator when one has no `limits`, when the scene
-  /// has no actuators, or for a scheme other than `chebyshev`.
+  /// has no actuators or a clamped tip, or for a scheme other than `chebyshev`.
   InverseStatics(const scene::Scene& scene, const InverseStaticsOptions& options = {});
   ~InverseStatics();
   InverseStatics(InverseStatics&&) noexcept;
