@@ -56,7 +56,8 @@ enum class InverseStaticsMethod { gauss_newton, ceres };
 struct InverseStaticsOptions {
   InverseStaticsMethod method = InverseStaticsMethod::gauss_newton;
   /// The forward statics: scheme (only `chebyshev`, whose Newton system gives the exact
-  /// sensitivities), nodes, tol, max_iterations (max_wall_time and time are not used).
+  /// sensitivities), nodes, tol, max_iterations, time (the scene's schedules are evaluated
+  /// there); max_wall_time is not used.
   statics::StaticSolveOptions statics{"chebyshev", 24, 1e-10, 50};
   double tolerance = 1e-3;        ///< reach tolerance [m] on |p_tip - target|
   double regularization = 1e-8;   ///< w above (minimum input norm); 0: none
