@@ -8,6 +8,7 @@
 #include <Eigen/SVD>
 
 #include "reach_support.hpp"
+#include "reference/reference_rods.hpp"
 #include "rodlab/solvers/statics/chebyshev_tracker.hpp"
 
 using namespace rodlab;
@@ -52,7 +53,7 @@ Vector3 forward_tip(const Eigen::VectorXd& u) {
 // strain); with the default weight w = 1e-8, to its bias T |J|^2 / (|J|^2 + w) (measured 6e-8
 // relative, 2e-9 m): 1e-6 relative and 1e-8 m.
 BOOST_AUTO_TEST_CASE(single_cable_arc_recovers_the_tension) {
-  const double EI = 1e6 * M_PI * std::pow(0.01, 4) / 64, EA = 1e6 * M_PI * 0.01 * 0.01 / 4;
+  const double EI = rodlab::validation::reference::Table21::EI, EA = rodlab::validation::reference::Table21::EA;
   for (double T : {0.05, 0.3, 0.8}) {
     lie::Vector6 xi;
     xi << 0, T * kD / EI, 0, 0, 0, 1 - T / EA;
