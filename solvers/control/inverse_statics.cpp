@@ -107,6 +107,41 @@ struct Outcome {
   std::string failure;  ///< why the method stopped without converging
 };
 
+/// The Gauss-Newton model at u in the scaled inputs v = u / s: residual [e / L; sqrt(w) v],
+/// Jacobian [dp/du diag(s) / L; sqrt(w) I]; the step d minimises
+/// 1/2 d^T (H0 + mu I) d + g^T d within lo <= d <= hi (the limits, shifted by v).
+struct LinearModel {
+  explicit LinearModel(int m) : Jv(3, m), H0(m, m), H(m, m), g(m), lo(m), hi(m), v(m), delta(m) {}
+
+  void build(const Problem& P, const VectorXd& u, const Matrix3X& dpdu) {
+    const int m = static_cast<int>(u.size());
+    Jv = dpdu * P.scale.asDiagonal() / P.length;
+    v = u.cwiseQuotient(P.scale);
+    const Vector3 e = (P.model.tip() - P.target) / P.length;
+    H0.noalias() = Jv.transpose() * Jv;
+    H0.diagonal().array() += P.weight + kDiagonalFloor * H0.diagonal().maxCoeff();
+    g.noalias() = Jv.transpose() * e;
+    g += P.weight * v;
+    for (int k = 0; k < m; ++k) {
+      lo[k] = P.limits[k].first / P.scale[k] - v[k];
+      hi[k] = P.limits[k].second / P.scale[k] - v[k];
+    }
+  }
+  /// The damped step into `delta`; false if the box QP fails.
+  bool step(double mu) {
+    H = H0;
+    H.diagonal().array() += mu;
+    delta.setZero();
+    return solve_box_qp(H, g, lo, hi, delta).converged;
+  }
+  /// The fall of the cost the undamped model predicts for `delta`.
+  double predicted_fall() const { return -(2.0 * g.dot(delta) + delta.dot(H0 * delta)); }
+
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxBoxQpSize> Jv;
+  BoxQpMatrix H0, H;
+  BoxQpVector g, lo, hi, v, delta;
+};
+
 /// Bounded Gauss-Newton with Levenberg-Marquardt damping (inverse_statics.hpp, "SOLVER"), in place
 /// of (4.11)'s q <- q - 0.2 J^-1 e. u: feasible start on entry, the solution on return; the model
 /// is left solved at u.
@@ -119,64 +154,45 @@ Outcome gauss_newton(const Problem& P, const InverseStaticsOptions& o, VectorXd&
   }
   double cost = P.cost(u), mu = 0.0, nu = 2.0;
   Matrix3X dpdu;
-  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxBoxQpSize> Jv(3, m);
-  BoxQpMatrix H0(m, m), H(m, m);
-  BoxQpVector g(m), lo(m), hi(m), v(m), delta(m);
+  LinearModel model(m);
   VectorXd trial(m);
   while (P.model.updates < o.max_updates) {
     if (!P.model.jacobian(dpdu)) {
       out.failure = P.model.failure;
       return out;
     }
-    // Scaled inputs v = u / s: residual [e / L; sqrt(w) v], Jacobian [dp/du diag(s) / L; sqrt(w) I].
-    Jv = dpdu * P.scale.asDiagonal() / P.length;
-    v = u.cwiseQuotient(P.scale);
-    const Vector3 e = (P.model.tip() - P.target) / P.length;
-    H0.noalias() = Jv.transpose() * Jv;
-    H0.diagonal().array() += P.weight + kDiagonalFloor * H0.diagonal().maxCoeff();
-    g.noalias() = Jv.transpose() * e;
-    g += P.weight * v;
-    for (int k = 0; k < m; ++k) {
-      lo[k] = P.limits[k].first / P.scale[k] - v[k];
-      hi[k] = P.limits[k].second / P.scale[k] - v[k];
-    }
+    model.build(P, u, dpdu);
     bool accepted = false;
-    double step = 0.0;
-    for (int trial_count = 0; trial_count < kMaxDampingTrials && !accepted; ++trial_count) {
-      H = H0;
-      H.diagonal().array() += mu;
-      delta.setZero();
-      if (!solve_box_qp(H, g, lo, hi, delta).converged) {
+    for (int trials = 0; trials < kMaxDampingTrials && !accepted; ++trials) {
+      if (!model.step(mu)) {
         out.failure = "the bounded step (box QP) did not converge";
         return out;
       }
-      step = delta.lpNorm<Eigen::Infinity>();
-      if (step <= kStationaryStep) {  // no input can move: a KKT point
+      const double step = model.delta.lpNorm<Eigen::Infinity>();
+      // No input moves although the damping is no larger than the model's curvature: a KKT point.
+      if (step <= kStationaryStep && mu <= model.H0.diagonal().maxCoeff()) {
         out.converged = P.model.solve_at(u.data());
         return out;
       }
-      const double predicted = -(2.0 * g.dot(delta) + delta.dot(H0 * delta));
       for (int k = 0; k < m; ++k)
-        trial[k] = std::clamp((v[k] + delta[k]) * P.scale[k], P.limits[k].first, P.limits[k].second);
+        trial[k] = std::clamp((model.v[k] + model.delta[k]) * P.scale[k], P.limits[k].first, P.limits[k].second);
       const bool solved = P.model.solve_at(trial.data());
-      const double new_cost = solved ? P.cost(trial) : cost;
+      const double new_cost = solved ? P.cost(trial) : cost, predicted = model.predicted_fall();
       const double rho = solved && predicted > 0.0 ? (cost - new_cost) / predicted : -1.0;
-      if (rho > kAcceptRatio) {
-        accepted = true;
-        u = trial;
-        const double fall = cost - new_cost;
-        cost = new_cost;
-        mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
-        nu = 2.0;
-        const bool near = (P.model.tip() - P.target).norm() <= o.tolerance;
-        if ((near && step <= o.step_tolerance) || fall <= kStalledFall * cost) {
-          out.converged = true;
-          return out;
-        }
-      } else {
-        mu = mu == 0.0 ? kInitialDamping * H0.diagonal().maxCoeff() : mu * nu;
+      if (!(rho > kAcceptRatio)) {
+        mu = mu == 0.0 ? kInitialDamping * model.H0.diagonal().maxCoeff() : mu * nu;
         nu *= 2.0;
+        continue;
       }
+      accepted = true;
+      u = trial;
+      const double fall = cost - new_cost;
+      cost = new_cost;
+      mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
+      nu = 2.0;
+      const bool near = (P.model.tip() - P.target).norm() <= o.tolerance;
+      out.converged = (near && step <= o.step_tolerance) || fall <= kStalledFall * cost;
+      if (out.converged) return out;
     }
     if (!accepted) {
       P.model.solve_at(u.data());
