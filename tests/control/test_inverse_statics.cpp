@@ -25,19 +25,11 @@ constexpr double kL = 0.1, kD = 0.004;
 
 /// Table 2.1 rod, weightless (no gravity), one cable at +x with tension limits [0, 1] N.
 scene::Scene one_cable() {
-  return io::load_scene_from_string(R"(
-schema: rodlab.scene/1
-name: one-cable
-rod:
-  length: 0.1
-  section: {shape: circle, diameter: 0.01}
-  material: {E: 1.0e6, G: 0.33e6, rho: 1000}
-tip:
-  free: {}
-actuators:
-  - cable: {offset: [0.004, 0], tension: 0, limits: [0, 1]}
-solver: {scheme: chebyshev, nodes: 24, tol: 1.0e-10}
-)", "one-cable.yaml");
+  return io::load_scene_from_string("schema: rodlab.scene/1\nname: one-cable\n" +
+                                        validation::reference::table21_rod_yaml() +
+                                        "tip:\n  free: {}\nactuators:\n"
+                                        "  - cable: {offset: [0.004, 0], tension: 0, limits: [0, 1]}\n",
+                                    "one-cable.yaml");
 }
 
 /// The tip of the cable-driven scene with tensions u (chebyshev N = 24).
@@ -199,29 +191,9 @@ BOOST_AUTO_TEST_CASE(minimum_input_norm) {
 // for q: cable and muscle both bend in the x-z plane and both shorten the rod, so the tip height
 // is a weak direction along which w shifts u by that much for 3e-7 m of tip).
 BOOST_AUTO_TEST_CASE(every_input_kind) {
-  const scene::Scene scene = io::load_scene_from_string(R"(
-schema: rodlab.scene/1
-name: mixed-actuators
-rod:
-  length: 0.1
-  section: {shape: circle, diameter: 0.01}
-  material: {E: 1.0e6, G: 0.33e6, rho: 1000}
-tip:
-  free: {}
-loads:
-  gravity: [-9.81, 0, 0]
-actuators:
-  - cable: {offset: [0.004, 0], displacement: 0, limits: [0, 0.001]}
-  - fluidic: {offset: [0, 0.003], chamber_radius: 0.001, pressure: 0, limits: [0, 5.0e4]}
-  - muscle:
-      offset: [-0.003, 0]
-      section: {shape: circle, diameter: 0.001}
-      material: {E: 5.0e7, poisson: 0.5, rho: 1500}
-      input: 0
-      law: {type: linear, gain: 0.2, stiffness: 0}
-      span: [0, 0.07]
-      limits: [0, 2]
-)", "mixed-actuators.yaml");
+  // tests/data/scenes/good/mixed-actuators.yaml without its entering cable: 3 inputs.
+  scene::Scene scene = io::load_scene(std::string(RODLAB_TEST_DATA) + "/scenes/good/mixed-actuators.yaml");
+  scene.actuators.pop_back();
   const Eigen::Vector3d us(0.0007, 3.0e4, 1.5), range(0.001, 5.0e4, 2.0);
   solvers::statics::ChebyshevTracker tracker(solvers::statics::StaticProblem::from_scene(scene), {});
   BOOST_TEST_REQUIRE(tracker.solve(std::span<const double>(us.data(), 3)), tracker.reason());
