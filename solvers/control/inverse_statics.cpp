@@ -20,7 +20,8 @@ namespace {
 using Eigen::VectorXd;
 using Matrix3X = statics::ChebyshevTracker::TipJacobian;
 
-/// Central-difference step of each input for F_u, as a fraction of its scale s_k.
+/// Central-difference step of each input for the scalars dF_k/du_k and d target/du_k inside
+/// ChebyshevTracker::tip_jacobian, as a fraction of its scale s_k.
 constexpr double kSensitivityStep = 1e-6;
 /// A step is accepted when the cost falls by at least this fraction of the predicted fall.
 constexpr double kAcceptRatio = 1e-4;
