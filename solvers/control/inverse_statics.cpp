@@ -20,7 +20,8 @@ namespace {
 using Eigen::VectorXd;
 using Matrix3X = statics::ChebyshevTracker::TipJacobian;
 
-/// Central-difference step of each input for F_u, as a fraction of its scale s_k.
+/// Central-difference step of each input for the scalars dF_k/du_k and d target/du_k inside
+/// ChebyshevTracker::tip_jacobian, as a fraction of its scale s_k.
 constexpr double kSensitivityStep = 1e-6;
 /// A step is accepted when the cost falls by at least this fraction of the predicted fall.
 constexpr double kAcceptRatio = 1e-4;
@@ -28,6 +29,12 @@ constexpr double kAcceptRatio = 1e-4;
 constexpr int kMaxDampingTrials = 30;
 /// Nothing moves: the box QP's step is below this (scaled inputs): a KKT point.
 constexpr double kStationaryStep = 1e-12;
+/// The first damping after a rejected undamped step, relative to the largest diagonal of J^T J.
+constexpr double kInitialDamping = 1e-3;
+/// Keeps the step's matrix positive definite without regularisation (relative to its diagonal).
+constexpr double kDiagonalFloor = 1e-14;
+/// An accepted step that lowers the cost by less than this fraction: converged (rounding level).
+constexpr double kStalledFall = 1e-15;
 /// Ceres: initial trust-region radius, pure Gauss-Newton steps at first (with damping above the
 /// regularisation weight the step would barely move along the null space of J).
 constexpr double kCeresInitialRadius = 1e12;
@@ -101,6 +108,41 @@ struct Outcome {
   std::string failure;  ///< why the method stopped without converging
 };
 
+/// The Gauss-Newton model at u in the scaled inputs v = u / s: residual [e / L; sqrt(w) v],
+/// Jacobian [dp/du diag(s) / L; sqrt(w) I]; the step d minimises
+/// 1/2 d^T (H0 + mu I) d + g^T d within lo <= d <= hi (the limits, shifted by v).
+struct LinearModel {
+  explicit LinearModel(int m) : Jv(3, m), H0(m, m), H(m, m), g(m), lo(m), hi(m), v(m), delta(m) {}
+
+  void build(const Problem& P, const VectorXd& u, const Matrix3X& dpdu) {
+    const int m = static_cast<int>(u.size());
+    Jv = dpdu * P.scale.asDiagonal() / P.length;
+    v = u.cwiseQuotient(P.scale);
+    const Vector3 e = (P.model.tip() - P.target) / P.length;
+    H0.noalias() = Jv.transpose() * Jv;
+    H0.diagonal().array() += P.weight + kDiagonalFloor * H0.diagonal().maxCoeff();
+    g.noalias() = Jv.transpose() * e;
+    g += P.weight * v;
+    for (int k = 0; k < m; ++k) {
+      lo[k] = P.limits[k].first / P.scale[k] - v[k];
+      hi[k] = P.limits[k].second / P.scale[k] - v[k];
+    }
+  }
+  /// The damped step into `delta`; false if the box QP fails.
+  bool step(double mu) {
+    H = H0;
+    H.diagonal().array() += mu;
+    delta.setZero();
+    return solve_box_qp(H, g, lo, hi, delta).converged;
+  }
+  /// The fall of the cost the undamped model predicts for `delta`.
+  double predicted_fall() const { return -(2.0 * g.dot(delta) + delta.dot(H0 * delta)); }
+
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxBoxQpSize> Jv;
+  BoxQpMatrix H0, H;
+  BoxQpVector g, lo, hi, v, delta;
+};
+
 /// Bounded Gauss-Newton with Levenberg-Marquardt damping (inverse_statics.hpp, "SOLVER"), in place
 /// of (4.11)'s q <- q - 0.2 J^-1 e. u: feasible start on entry, the solution on return; the model
 /// is left solved at u.
@@ -113,64 +155,45 @@ Outcome gauss_newton(const Problem& P, const InverseStaticsOptions& o, VectorXd&
   }
   double cost = P.cost(u), mu = 0.0, nu = 2.0;
   Matrix3X dpdu;
-  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxBoxQpSize> Jv(3, m);
-  BoxQpMatrix H0(m, m), H(m, m);
-  BoxQpVector g(m), lo(m), hi(m), v(m), delta(m);
+  LinearModel model(m);
   VectorXd trial(m);
   while (P.model.updates < o.max_updates) {
     if (!P.model.jacobian(dpdu)) {
       out.failure = P.model.failure;
       return out;
     }
-    // Scaled inputs v = u / s: residual [e / L; sqrt(w) v], Jacobian [dp/du diag(s) / L; sqrt(w) I].
-    Jv = dpdu * P.scale.asDiagonal() / P.length;
-    v = u.cwiseQuotient(P.scale);
-    const Vector3 e = (P.model.tip() - P.target) / P.length;
-    H0.noalias() = Jv.transpose() * Jv;
-    H0.diagonal().array() += P.weight + 1e-14 * H0.diagonal().maxCoeff();
-    g.noalias() = Jv.transpose() * e;
-    g += P.weight * v;
-    for (int k = 0; k < m; ++k) {
-      lo[k] = P.limits[k].first / P.scale[k] - v[k];
-      hi[k] = P.limits[k].second / P.scale[k] - v[k];
-    }
+    model.build(P, u, dpdu);
     bool accepted = false;
-    double step = 0.0;
-    for (int trial_count = 0; trial_count < kMaxDampingTrials && !accepted; ++trial_count) {
-      H = H0;
-      H.diagonal().array() += mu;
-      delta.setZero();
-      if (!solve_box_qp(H, g, lo, hi, delta).converged) {
+    for (int trials = 0; trials < kMaxDampingTrials && !accepted; ++trials) {
+      if (!model.step(mu)) {
         out.failure = "the bounded step (box QP) did not converge";
         return out;
       }
-      step = delta.lpNorm<Eigen::Infinity>();
-      if (step <= kStationaryStep) {  // no input can move: a KKT point
+      const double step = model.delta.lpNorm<Eigen::Infinity>();
+      // No input moves although the damping is no larger than the model's curvature: a KKT point.
+      if (step <= kStationaryStep && mu <= model.H0.diagonal().maxCoeff()) {
         out.converged = P.model.solve_at(u.data());
         return out;
       }
-      const double predicted = -(2.0 * g.dot(delta) + delta.dot(H0 * delta));
       for (int k = 0; k < m; ++k)
-        trial[k] = std::clamp((v[k] + delta[k]) * P.scale[k], P.limits[k].first, P.limits[k].second);
+        trial[k] = std::clamp((model.v[k] + model.delta[k]) * P.scale[k], P.limits[k].first, P.limits[k].second);
       const bool solved = P.model.solve_at(trial.data());
-      const double new_cost = solved ? P.cost(trial) : cost;
+      const double new_cost = solved ? P.cost(trial) : cost, predicted = model.predicted_fall();
       const double rho = solved && predicted > 0.0 ? (cost - new_cost) / predicted : -1.0;
-      if (rho > kAcceptRatio) {
-        accepted = true;
-        u = trial;
-        const double fall = cost - new_cost;
-        cost = new_cost;
-        mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
-        nu = 2.0;
-        const bool near = (P.model.tip() - P.target).norm() <= o.tolerance;
-        if ((near && step <= o.step_tolerance) || fall <= 1e-15 * cost) {
-          out.converged = true;
-          return out;
-        }
-      } else {
-        mu = mu == 0.0 ? 1e-3 * H0.diagonal().maxCoeff() : mu * nu;
+      if (!(rho > kAcceptRatio)) {
+        mu = mu == 0.0 ? kInitialDamping * model.H0.diagonal().maxCoeff() : mu * nu;
         nu *= 2.0;
+        continue;
       }
+      accepted = true;
+      u = trial;
+      const double fall = cost - new_cost;
+      cost = new_cost;
+      mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
+      nu = 2.0;
+      const bool near = (P.model.tip() - P.target).norm() <= o.tolerance;
+      out.converged = (near && step <= o.step_tolerance) || fall <= kStalledFall * cost;
+      if (out.converged) return out;
     }
     if (!accepted) {
       P.model.solve_at(u.data());
@@ -284,6 +307,12 @@ std::vector<std::pair<double, double>> input_limits(const scene::Scene& scene_in
   return limits;
 }
 
+/// The options, after checking that the scene's tip is free (a clamped tip has no target).
+const InverseStaticsOptions& free_tip(const scene::Scene& scene, const InverseStaticsOptions& o) {
+  RODLAB_THROW_UNLESS(!scene.tip_clamped(), "inverse statics needs a free tip (`tip: free`), got a clamped one");
+  return o;
+}
+
 statics::ChebyshevOptions forward_options(const InverseStaticsOptions& o) {
   RODLAB_THROW_UNLESS(o.statics.scheme == "chebyshev",
                       "inverse statics runs on `chebyshev` (its Newton system gives the exact "
@@ -300,7 +329,7 @@ statics::ChebyshevOptions forward_options(const InverseStaticsOptions& o) {
 
 struct InverseStatics::Impl {
   Impl(const scene::Scene& scene, const InverseStaticsOptions& o)
-      : options(o),
+      : options(free_tip(scene, o)),
         limits(input_limits(scene)),
         tracker(statics::StaticProblem::from_scene(scene, o.statics.time), forward_options(o)),
         length(scene.rod.length) {

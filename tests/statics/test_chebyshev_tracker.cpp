@@ -66,36 +66,9 @@ BOOST_AUTO_TEST_CASE(warm_solves_and_tip_jacobian) {
 
 namespace {
 
-/// Table 2.1 rod under gravity along -x with one actuator of each kind that has an input:
-/// a displacement-controlled cable (its tension an extra unknown), a pressurised chamber, a
-/// muscle on [0, 0.07] (its length an extra unknown; a breakpoint), and a tension-driven cable
-/// entering the rod at 0.0437 (Lambda jumps there): three elements.
+/// tests/data/scenes/good/mixed-actuators.yaml: every kind of input, under gravity; three elements.
 scene::Scene mixed_actuators() {
-  return io::load_scene_from_string(R"(
-schema: rodlab.scene/1
-name: mixed-actuators
-rod:
-  length: 0.1
-  section: {shape: circle, diameter: 0.01}
-  material: {E: 1.0e6, G: 0.33e6, rho: 1000}
-tip:
-  free: {}
-loads:
-  gravity: [-9.81, 0, 0]
-actuators:
-  - cable: {offset: [0.004, 0], displacement: 0, limits: [0, 0.001]}
-  - fluidic: {offset: [0, 0.003], chamber_radius: 0.001, pressure: 0, limits: [0, 5.0e4]}
-  - muscle:
-      offset: [-0.003, 0]
-      section: {shape: circle, diameter: 0.001}
-      material: {E: 5.0e7, poisson: 0.5, rho: 1500}
-      input: 0
-      law: {type: linear, gain: 0.2, stiffness: 0}
-      span: [0, 0.07]
-      limits: [0, 2]
-  - cable: {offset: [0, -0.004], tension: 0, span: [0.0437, 0.1], limits: [0, 0.5]}
-solver: {scheme: chebyshev, nodes: 24, tol: 1.0e-10}
-)", "mixed-actuators.yaml");
+  return io::load_scene(std::string(RODLAB_TEST_DATA) + "/scenes/good/mixed-actuators.yaml");
 }
 
 /// The tip of a cold solve_static (chebyshev N = 24, tol 1e-12) with the inputs u.

@@ -56,7 +56,8 @@ enum class InverseStaticsMethod { gauss_newton, ceres };
 struct InverseStaticsOptions {
   InverseStaticsMethod method = InverseStaticsMethod::gauss_newton;
   /// The forward statics: scheme (only `chebyshev`, whose Newton system gives the exact
-  /// sensitivities), nodes, tol, max_iterations (max_wall_time and time are not used).
+  /// sensitivities), nodes, tol, max_iterations, time (the scene's schedules are evaluated
+  /// there); max_wall_time is not used.
   statics::StaticSolveOptions statics{"chebyshev", 24, 1e-10, 50};
   double tolerance = 1e-3;        ///< reach tolerance [m] on |p_tip - target|
   double regularization = 1e-8;   ///< w above (minimum input norm); 0: none
@@ -85,7 +86,7 @@ struct InverseStaticsResult {
 class InverseStatics {
  public:
   /// Throws std::invalid_argument naming the actuator when one has no `limits`, when the scene
-  /// has no actuators, or for a scheme other than `chebyshev`.
+  /// has no actuators or a clamped tip, or for a scheme other than `chebyshev`.
   InverseStatics(const scene::Scene& scene, const InverseStaticsOptions& options = {});
   ~InverseStatics();
   InverseStatics(InverseStatics&&) noexcept;
