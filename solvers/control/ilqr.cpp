@@ -5,7 +5,7 @@
 #include <Eigen/Cholesky>
 
 #include "rodlab/check.hpp"
-#include "rodlab/solvers/control/box_qp.hpp"
+#include "rodlab/solvers/common/box_qp.hpp"
 
 namespace rodlab::solvers::control {
 namespace {

@@ -132,15 +132,16 @@ struct LinearModel {
   bool step(double mu) {
     H = H0;
     H.diagonal().array() += mu;
-    delta.setZero();
-    return solve_box_qp(H, g, lo, hi, delta).converged;
+    const BoxQpResult qp = solve_box_qp(H, g, lo, hi, Eigen::VectorXd::Zero(g.size()));
+    delta = qp.x;
+    return qp.ok;
   }
   /// The fall of the cost the undamped model predicts for `delta`.
   double predicted_fall() const { return -(2.0 * g.dot(delta) + delta.dot(H0 * delta)); }
 
-  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxBoxQpSize> Jv;
-  BoxQpMatrix H0, H;
-  BoxQpVector g, lo, hi, v, delta;
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, statics::StaticProblem::kMaxActuators> Jv;
+  Eigen::MatrixXd H0, H;
+  Eigen::VectorXd g, lo, hi, v, delta;
 };
 
 /// Bounded Gauss-Newton with Levenberg-Marquardt damping (inverse_statics.hpp, "SOLVER"), in place
@@ -297,8 +298,9 @@ std::vector<std::pair<double, double>> input_limits(const scene::Scene& scene_in
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(rodlab::format("inverse statics: {}", e.what()));
   }
-  RODLAB_THROW_UNLESS(static_cast<int>(limits.size()) <= kMaxBoxQpSize,
-                      "inverse statics: at most {} actuators, got {}", kMaxBoxQpSize, limits.size());
+  RODLAB_THROW_UNLESS(static_cast<int>(limits.size()) <= statics::StaticProblem::kMaxActuators,
+                      "inverse statics: at most {} actuators, got {}",
+                      statics::StaticProblem::kMaxActuators, limits.size());
   for (std::size_t k = 0; k < limits.size(); ++k)
     RODLAB_THROW_UNLESS(limits[k].first <= limits[k].second && std::isfinite(limits[k].first) &&
                             std::isfinite(limits[k].second),

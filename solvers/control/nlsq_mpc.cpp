@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "rodlab/check.hpp"
-#include "rodlab/solvers/control/box_qp.hpp"
+#include "rodlab/solvers/common/box_qp.hpp"
 
 namespace rodlab::solvers::control {
 namespace {

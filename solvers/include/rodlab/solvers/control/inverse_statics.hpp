@@ -13,7 +13,7 @@
 //
 // SOLVER (method gauss_newton, the default). Bounded Gauss-Newton with Levenberg-Marquardt
 // damping: each update evaluates J once and takes the exact minimiser of the damped linear model
-// within the box (common/box_qp.hpp, an active-set QP: inputs at a limit leave the step, the
+// within the box (common/box_qp.hpp, projected Newton: inputs at a limit leave the step, the
 // others get the reduced Gauss-Newton step), accepted on the actual/predicted reduction ratio
 // (Nielsen's damping update; undamped while the model predicts well). It stops once the tip is
 // within `tolerance` and the last update moved no input by more than step_tolerance s_k, or
