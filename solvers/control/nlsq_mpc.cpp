@@ -15,6 +15,9 @@ constexpr double kInitialDamping = 1e-3;
 constexpr double kDampingGrowth = 4.0;
 constexpr double kAcceptRatio = 1e-4;
 constexpr int kTrialsPerIteration = 12;
+/// A step accepted with a gain ratio above this updates the Jacobian by Broyden's rank-one
+/// formula; a worse one recomputes it (the problem is nearly linear over a plan's steps).
+constexpr double kBroydenRatio = 0.75;
 
 }  // namespace
 
@@ -149,6 +152,7 @@ MpcPlan NlsqMpc::plan(Plant& plant, std::span<const Vector3> targets) {
     out.ok = false;
     out.reason = "nlsq-mpc: the rollout of the warm start failed: " + why;
   }
+  out.jacobians = 1;
   double mu = -1.0;  // damping, set from the first J^T J
   for (; out.ok && out.iterations < options_.max_iterations; ++out.iterations) {
     // Levenberg-Marquardt in the scaled inputs z = U / range: min 1/2 |r + J_z d|^2 + mu/2 d^T D d
@@ -161,7 +165,9 @@ MpcPlan NlsqMpc::plan(Plant& plant, std::span<const Vector3> targets) {
     z_upper_ = (upper - U_).cwiseQuotient(range);
     const double cost = 0.5 * r_.squaredNorm();
     bool accepted = false;
-    double decrease = 0.0;
+    double decrease = 0.0, rho_accepted = 0.0;
+    r_old_ = r_;
+    U_old_ = U_;
     for (int trial = 0; trial < kTrialsPerIteration && !accepted; ++trial) {
       Eigen::MatrixXd Am = A;
       Am.diagonal() += mu * D;
@@ -176,6 +182,7 @@ MpcPlan NlsqMpc::plan(Plant& plant, std::span<const Vector3> targets) {
       if (rho > kAcceptRatio) {
         accepted = true;
         decrease = cost - 0.5 * r_trial_.squaredNorm();
+        rho_accepted = rho;
         U_ = U_trial_;
         r_ = r_trial_;
         mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
@@ -184,14 +191,20 @@ MpcPlan NlsqMpc::plan(Plant& plant, std::span<const Vector3> targets) {
       }
     }
     if (!accepted) break;  // no trial decreased the cost: a (local) minimum in the box
-    if (!jacobian(plant, J_, why)) {  // along the accepted rollout (the last one run)
-      out.ok = false;
-      out.reason = "nlsq-mpc: a step of the linearisation failed: " + why;
-      break;
-    }
     if (decrease <= options_.function_tolerance * cost) {
       ++out.iterations;
       break;
+    }
+    if (rho_accepted > kBroydenRatio) {
+      // the model predicted well: Broyden's rank-one update instead of a new Jacobian
+      const Eigen::VectorXd dU = U_ - U_old_;
+      J_ += ((r_ - r_old_) - J_ * dU) * dU.transpose() / dU.squaredNorm();
+    } else if (!jacobian(plant, J_, why)) {  // along the accepted rollout (the last one run)
+      out.ok = false;
+      out.reason = "nlsq-mpc: a step of the linearisation failed: " + why;
+      break;
+    } else {
+      ++out.jacobians;
     }
   }
   out.cost = r_.squaredNorm();

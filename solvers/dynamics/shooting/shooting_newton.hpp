@@ -25,8 +25,6 @@ namespace rodlab::solvers::dynamics {
 inline constexpr double kShootingFdStep = 1e-7;
 /// A Newton step that does not reduce the residual by this factor triggers a fresh Jacobian.
 inline constexpr double kShootingSlowRatio = 0.5;
-/// A warm-started solve (warm_from) goes this much below the tolerance.
-inline constexpr double kShootingWarmTighten = 1e-3;
 /// A fresh Jacobian's step that does not reduce the residual is halved up to this many times.
 inline constexpr int kShootingHalvings = 10;
 
@@ -54,7 +52,6 @@ class ShootingNewton {
     valid_ = other.valid_;
     c_ = other.c_;
     prev_ = prev2_ = other.prev_;
-    warm_ = true;
   }
 
   /// The first guess of the first step (also the predictor's history).
@@ -81,11 +78,7 @@ class ShootingNewton {
     }
     bool fresh = false;
     auto norm = [](const Vec& v) { return v.template lpNorm<Eigen::Infinity>(); };
-    // a warm start differences the step: solved beyond tol, so that the difference is not the
-    // two solves' tolerance over the perturbation
-    const double goal = warm_ ? kShootingWarmTighten * tol : tol;
-    warm_ = false;
-    while (!(norm(r) <= goal)) {
+    while (!(norm(r) <= tol)) {
       check_deadline();  // the run's wall-time guard (common/deadline.hpp)
       if (out.shots >= max_shots || !r.allFinite()) {
         out.failure =
@@ -157,7 +150,6 @@ class ShootingNewton {
 
   Mat J_;
   bool valid_ = false;
-  bool warm_ = false;  ///< the next solve starts warm (warm_from)
   double c_ = 0.0;
   Vec prev_, prev2_;
 };

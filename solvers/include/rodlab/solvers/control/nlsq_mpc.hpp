@@ -17,8 +17,9 @@
 // with respect to the H x m inputs is built from the linearisation's directional derivatives
 // (linearisation.hpp): for each input u_j,i one derivative at step j and its propagation through
 // steps j+1..H-1 along the nominal rollout, sum_j m (H - j) one-step derivatives, not (4 H + 1) H
-// rollouts. The plan is warm-started from the previous one shifted by a step; the first input is
-// applied.
+// rollouts; once per plan, and again only after a step the model predicted poorly (otherwise
+// Broyden's rank-one update). The plan is warm-started from the previous one shifted by a step;
+// the first input is applied.
 #include <cmath>
 #include <span>
 #include <string>
@@ -44,7 +45,8 @@ struct MpcOptions {
 struct MpcPlan {
   bool ok = true;
   std::string reason;  ///< why no plan (every rollout failed, Ceres failed)
-  int iterations = 0;  ///< Levenberg-Marquardt iterations (Jacobian evaluations)
+  int iterations = 0;  ///< Levenberg-Marquardt iterations
+  int jacobians = 0;   ///< tip-trajectory Jacobians computed (the rest: Broyden updates)
   int rollouts = 0;    ///< rollouts of the horizon (trial steps included)
   double cost = 0.0;   ///< the cost above at the plan
   Eigen::VectorXd u;   ///< the first input (applied)
@@ -92,7 +94,7 @@ class NlsqMpc {
   std::vector<Eigen::VectorXd> xs_;    ///< x_1..x_H of the last rollout (tangent coordinates)
   std::vector<Vector3> tips_;          ///< p_1..p_H of the last rollout
   Eigen::MatrixXd plan_;               ///< H x m
-  Eigen::VectorXd U_, U_trial_, r_, r_trial_, z_lower_, z_upper_;
+  Eigen::VectorXd U_, U_trial_, U_old_, r_, r_trial_, r_old_, z_lower_, z_upper_;
   Eigen::MatrixXd J_;
   Eigen::VectorXd applied_, range_, dx_, du_, zero_u_, zero_x_;
   StepDerivative d_;
