@@ -46,6 +46,8 @@ NlsqMpc::NlsqMpc(const Plant& plant, const MpcOptions& options)
 void NlsqMpc::reset(const Plant& plant) {
   for (int k = 0; k < options_.horizon; ++k) plan_.row(k) = plant.input().transpose();
   applied_ = plant.input();
+  J_.resize(0, 0);
+  rolled_out_ = false;
 }
 
 bool NlsqMpc::residuals(Plant& plant, std::span<const Vector3> targets, const Eigen::VectorXd& U,
@@ -55,9 +57,13 @@ bool NlsqMpc::residuals(Plant& plant, std::span<const Vector3> targets, const Ei
   r.resize(3 * H + H * m + (effort ? H * m : 0));
   plant.restore(start_);
   const double L = plant.length();
+  const bool warm = rolled_out_;
+  rolled_out_ = false;
   for (int k = 0; k < H; ++k) {
     plant.set_input(U.segment(k * m, m));
     plant.save(states_[k]);
+    // the last rollout solved this step for nearby inputs: its solve's end starts this one
+    if (warm) plant.warm_start_from(states_[k + 1]);
     const dynamics::StepStatus status = plant.advance();
     if (!status.ok) {
       reason = status.reason;
@@ -76,6 +82,7 @@ bool NlsqMpc::residuals(Plant& plant, std::span<const Vector3> targets, const Ei
       r[3 * H + k * m + i] = rate * (U[k * m + i] - previous) / range_[i];
       if (effort) r[3 * H + H * m + k * m + i] = w * (U[k * m + i] - plant.lower()[i]) / range_[i];
     }
+  rolled_out_ = true;
   return true;
 }
 
@@ -117,6 +124,7 @@ bool NlsqMpc::jacobian(Plant& plant, Eigen::MatrixXd& J, std::string& reason) {
 
 bool NlsqMpc::evaluate(Plant& plant, std::span<const Vector3> targets, const Eigen::VectorXd& U,
                        Eigen::VectorXd& r, Eigen::MatrixXd* J, std::string& reason) {
+  rolled_out_ = false;
   RODLAB_THROW_UNLESS(static_cast<int>(targets.size()) == options_.horizon &&
                           U.size() == options_.horizon * plant.input_count(),
                       "nlsq-mpc: expected {} targets and {} inputs", options_.horizon,
@@ -136,6 +144,7 @@ MpcPlan NlsqMpc::plan(Plant& plant, std::span<const Vector3> targets) {
                       targets.size());
   plant.save(start_);
   applied_ = plant.input();
+  rolled_out_ = false;  // the last rollout started elsewhere
   // warm start: the last plan shifted by a step, its last input repeated, inside the limits
   for (int k = 0; k + 1 < H; ++k) plan_.row(k) = plan_.row(k + 1);
   U_.resize(n_u);
@@ -148,11 +157,32 @@ MpcPlan NlsqMpc::plan(Plant& plant, std::span<const Vector3> targets) {
   MpcPlan out;
   std::string why;
   ++out.rollouts;
-  if (!residuals(plant, targets, U_, r_, why) || !jacobian(plant, J_, why)) {
+  if (!residuals(plant, targets, U_, r_, why)) {
     out.ok = false;
     out.reason = "nlsq-mpc: the rollout of the warm start failed: " + why;
   }
-  out.jacobians = 1;
+  bool at_U = true;  // the last rollout was U_'s (the Jacobian is built along it)
+  // Along U_; false (reason set) when a step fails.
+  auto exact_jacobian = [&] {
+    if (!at_U) {
+      ++out.rollouts;
+      if (!residuals(plant, targets, U_, r_, why)) return false;
+      at_U = true;
+    }
+    ++out.jacobians;
+    return jacobian(plant, J_, why);
+  };
+  // the last plan's Jacobian: its blocks depend on k - j alone for a plant that changes little
+  // over a step (MpcOptions::reuse_jacobian); a poor prediction replaces it below
+  bool fresh = false;
+  const bool reuse = options_.reuse_jacobian && J_.rows() == r_.size() && J_.cols() == n_u;
+  if (out.ok && !reuse) {
+    if (!exact_jacobian()) {
+      out.ok = false;
+      out.reason = "nlsq-mpc: a step of the linearisation failed: " + why;
+    }
+    fresh = true;
+  }
   double mu = -1.0;  // damping, set from the first J^T J
   for (; out.ok && out.iterations < options_.max_iterations; ++out.iterations) {
     // Levenberg-Marquardt in the scaled inputs z = U / range: min 1/2 |r + J_z d|^2 + mu/2 d^T D d
@@ -178,6 +208,7 @@ MpcPlan NlsqMpc::plan(Plant& plant, std::span<const Vector3> targets) {
       U_trial_ = (U_ + qp.x.cwiseProduct(range)).cwiseMax(lower).cwiseMin(upper);
       ++out.rollouts;
       const bool ran = residuals(plant, targets, U_trial_, r_trial_, why);
+      at_U = false;
       const double rho = ran ? (cost - 0.5 * r_trial_.squaredNorm()) / predicted : -1.0;
       if (rho > kAcceptRatio) {
         accepted = true;
@@ -185,26 +216,29 @@ MpcPlan NlsqMpc::plan(Plant& plant, std::span<const Vector3> targets) {
         rho_accepted = rho;
         U_ = U_trial_;
         r_ = r_trial_;
+        at_U = true;
         mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
       } else {
         mu *= kDampingGrowth;
       }
     }
-    if (!accepted) break;  // no trial decreased the cost: a (local) minimum in the box
-    if (decrease <= options_.function_tolerance * cost) {
+    if (!accepted && fresh) break;  // no trial decreased the cost: a (local) minimum in the box
+    if (accepted && decrease <= options_.function_tolerance * cost) {
       ++out.iterations;
       break;
     }
-    if (rho_accepted > kBroydenRatio) {
+    if (accepted && rho_accepted > kBroydenRatio) {
       // the model predicted well: Broyden's rank-one update instead of a new Jacobian
       const Eigen::VectorXd dU = U_ - U_old_;
       J_ += ((r_ - r_old_) - J_ * dU) * dU.transpose() / dU.squaredNorm();
-    } else if (!jacobian(plant, J_, why)) {  // along the accepted rollout (the last one run)
+      fresh = false;
+    } else if (!exact_jacobian()) {  // a poor or no step with an updated or reused Jacobian
       out.ok = false;
       out.reason = "nlsq-mpc: a step of the linearisation failed: " + why;
       break;
     } else {
-      ++out.jacobians;
+      fresh = true;
+      mu = kInitialDamping;
     }
   }
   out.cost = r_.squaredNorm();

@@ -39,6 +39,11 @@ struct MpcOptions {
   double terminal_weight = 1.0;    ///< w_terminal, on the last step's tracking term
   int max_iterations = 20;         ///< Levenberg-Marquardt iterations (Jacobians) per plan
   double function_tolerance = 1e-6;  ///< a relative decrease of the cost below this ends a plan
+  /// Start each plan from the last plan's Jacobian (its blocks d p_(k+1) / d u_j depend on
+  /// k - j alone while the plant changes little over a control step), corrected by Broyden
+  /// updates and replaced by an exact one after a poorly predicted or failed step; false: an
+  /// exact Jacobian at every plan's start.
+  bool reuse_jacobian = true;
 };
 
 /// One plan.
@@ -91,6 +96,7 @@ class NlsqMpc {
   Linearisation lin_;
   PlantSnapshot start_;
   std::vector<PlantSnapshot> states_;  ///< x_0..x_H of the last rollout
+  bool rolled_out_ = false;  ///< states_ hold a whole rollout of this plan (warm starts)
   std::vector<Eigen::VectorXd> xs_;    ///< x_1..x_H of the last rollout (tangent coordinates)
   std::vector<Vector3> tips_;          ///< p_1..p_H of the last rollout
   Eigen::MatrixXd plan_;               ///< H x m
