@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <memory>
 #include <span>
 #include <stdexcept>
 
 #include "rodlab/check.hpp"
+#include "rodlab/rod/characteristics.hpp"
 #include "rodlab/scene/trajectory.hpp"
+#include "rodlab/solvers/dynamics/dynamic_workspace.hpp"
 #include "rodlab/solvers/common/deadline.hpp"
 #include "rodlab/solvers/control/ilqr.hpp"
 #include "rodlab/solvers/control/inverse_statics.hpp"
@@ -23,6 +26,8 @@ namespace rodlab::solvers::control {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+/// At least this many holds in a dynamic-workspace run for targets.
+constexpr int kDynamicHolds = 10;
 using result::ControlEpisode;
 using result::ControlResult;
 
@@ -43,11 +48,53 @@ const char* task_name(scene::ControlTask t) {
 statics::StaticSolveOptions statics_options() { return InverseStaticsOptions{}.statics; }
 
 /// The targets of reach and hold: listed, or drawn from the static workspace.
-void choose_targets(const scene::Scene& scene, const scene::Control& c, ControlResult& out) {
+/// `count` targets from the dynamic workspace (dynamic_workspace.hpp, thesis 3.4.1): random
+/// inputs each held for one first bending period on the plant's scheme, every recorded tip a
+/// candidate (points the rod passes through, beyond what it can hold) unless it lies within the
+/// success threshold of the rest tip, `count` of them drawn with the seed.
+std::vector<Vector3> dynamic_targets(const scene::Scene& scene, const ControlRunOptions& o) {
+  const scene::Control& c = o.control;
+  dynamics::DynamicWorkspaceOptions w;
+  w.solve = o.solver;
+  w.solve.max_iterations = std::max(o.solver.max_iterations, PlantOptions::kShotsPerStep);
+  w.solve.dt = c.dt_control;
+  w.holds = std::max(kDynamicHolds, c.target_count);
+  const auto problem = dynamics::DynamicProblem::from_scene(scene);
+  const auto ch = rod::characteristics(problem.model(), o.solver.nodes, rod::TipSupport::free);
+  w.hold_time = std::max(c.dt_control, 1.0 / ch.first_bending_frequency_hz);
+  w.outputs_per_hold = 10;
+  w.seed = c.seed;
+  const auto run = dynamics::sample_dynamic_workspace(scene, w);
+  // candidates: every reached tip beyond the success threshold of the rest shape's tip (a
+  // target the rod starts on is no test)
+  const Vector3 rest = problem.reference_tip().translation();
+  std::vector<Vector3> tips;
+  for (const auto& sample : run.samples) {
+    const Vector3 tip = scene.base.pose * sample.tip;  // world frame
+    if (sample.converged && (tip - rest).norm() > c.threshold * scene.rod.length)
+      tips.push_back(tip);
+  }
+  RODLAB_THROW_UNLESS(!tips.empty(), "control: the dynamic workspace run reached no tip");
+  std::mt19937 rng(c.seed);
+  std::vector<Vector3> out;
+  for (int k = 0; k < c.target_count; ++k)
+    out.push_back(tips[static_cast<std::size_t>(rng() % tips.size())]);
+  return out;
+}
+
+/// The targets of reach and hold: listed, else drawn: from the dynamic workspace for a dynamic
+/// controller's reach (the thesis' dynamic reach), from the static workspace otherwise.
+void choose_targets(const scene::Scene& scene, const ControlRunOptions& o, ControlResult& out) {
+  const scene::Control& c = o.control;
   out.seed = c.seed;
   if (!c.targets.empty()) {
     out.targets.drawn_from = result::TargetSource::scene;
     out.targets.points = c.targets;
+    return;
+  }
+  if (c.task == scene::ControlTask::reach && o.controller != "quasi-static") {
+    out.targets.drawn_from = result::TargetSource::dynamic_workspace;
+    out.targets.points = dynamic_targets(scene, o);
     return;
   }
   const StaticTargets drawn = sample_static_targets(scene, statics_options(), c.target_count, c.seed);
@@ -344,7 +391,7 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
   if (c.task == scene::ControlTask::track)
     out.targets.drawn_from = result::TargetSource::trajectory, out.seed = c.seed;
   else
-    choose_targets(scene, c, out);
+    choose_targets(scene, options, out);
   try {
     const DeadlineScope deadline(options.solver.max_wall_time);  // --max-wall-time
     if (dynamic)
