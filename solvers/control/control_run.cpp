@@ -44,8 +44,21 @@ const char* task_name(scene::ControlTask t) {
   return "?";
 }
 
-/// The statics of the workspace draws and of the quasi-static controller.
-statics::StaticSolveOptions statics_options() { return InverseStaticsOptions{}.statics; }
+/// The inverse statics of the quasi-static controller and of LQR's equilibria: reached within
+/// the success threshold, on the plant's number of nodes.
+InverseStaticsOptions inverse_statics_options(const scene::Control& c, const scene::Scene& scene,
+                                              int nodes) {
+  InverseStaticsOptions io;
+  io.tolerance = c.threshold * scene.rod.length;
+  io.statics.nodes = nodes;
+  return io;
+}
+
+/// The control steps of a track episode: the trajectory's duration in steps of dt_control.
+int track_steps(const scene::Control& c) {
+  return std::max(1, static_cast<int>(std::ceil(scene::duration(*c.trajectory) / c.dt_control -
+                                                1e-9)));
+}
 
 /// The targets of reach and hold: listed, or drawn from the static workspace.
 /// `count` targets from the dynamic workspace (dynamic_workspace.hpp, thesis 3.4.1): random
@@ -97,7 +110,8 @@ void choose_targets(const scene::Scene& scene, const ControlRunOptions& o, Contr
     out.targets.points = dynamic_targets(scene, o);
     return;
   }
-  const StaticTargets drawn = sample_static_targets(scene, statics_options(), c.target_count, c.seed);
+  const StaticTargets drawn =
+      sample_static_targets(scene, InverseStaticsOptions{}.statics, c.target_count, c.seed);
   out.targets.drawn_from = result::TargetSource::static_workspace;
   out.targets.points = drawn.tips;
 }
@@ -208,7 +222,7 @@ class IlqrController final : public DynamicController {
 class LqrController final : public DynamicController {
  public:
   LqrController(const scene::Scene& scene, const PlantOptions& po, const scene::Control& c)
-      : scene_(scene), po_(po), statics_(scene, statics_options_for(c, scene, po)) {
+      : scene_(scene), po_(po), statics_(scene, inverse_statics_options(c, scene, po.solver.nodes)) {
     weights_.input = std::max(c.weights.input, LqrWeights{}.input);
   }
   std::string start(const Plant&, const Vector3& target) override {
@@ -222,13 +236,6 @@ class LqrController final : public DynamicController {
   }
 
  private:
-  static InverseStaticsOptions statics_options_for(const scene::Control& c, const scene::Scene& s,
-                                                   const PlantOptions& po) {
-    InverseStaticsOptions io;
-    io.tolerance = c.threshold * s.rod.length;
-    io.statics.nodes = po.solver.nodes;
-    return io;
-  }
   const scene::Scene& scene_;
   PlantOptions po_;
   InverseStatics statics_;
@@ -255,9 +262,7 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
   const double L = plant.length(), threshold = c.threshold * L, dt = c.dt_control;
   const bool track = c.task == scene::ControlTask::track;
   const int episodes = track ? 1 : static_cast<int>(out.targets.points.size());
-  const int steps = track ? std::max(1, static_cast<int>(std::ceil(
-                                            scene::duration(*c.trajectory) / dt - 1e-9)))
-                          : c.max_steps;
+  const int steps = track ? track_steps(c) : c.max_steps;
   std::vector<Vector3> horizon(std::max(1, c.horizon));
   for (int e = 0; e < episodes && out.converged; ++e) {
     plant.restore(initial);
@@ -308,15 +313,10 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
 /// quasi-static: inverse statics per target (reach, hold) or per control step (track).
 void run_quasi_static(const scene::Scene& scene, const ControlRunOptions& o, ControlResult& out) {
   const scene::Control& c = o.control;
-  InverseStaticsOptions io;
-  io.tolerance = c.threshold * scene.rod.length;
-  io.statics.nodes = o.solver.nodes;
-  InverseStatics solver(scene, io);
+  InverseStatics solver(scene, inverse_statics_options(c, scene, o.solver.nodes));
   const bool track = c.task == scene::ControlTask::track;
   const int episodes = track ? 1 : static_cast<int>(out.targets.points.size());
-  const int steps = track ? std::max(1, static_cast<int>(std::ceil(
-                                            scene::duration(*c.trajectory) / c.dt_control - 1e-9)))
-                          : 1;
+  const int steps = track ? track_steps(c) : 1;
   for (int e = 0; e < episodes; ++e) {
     ControlEpisode episode;
     const std::size_t first = out.series.t.size();
