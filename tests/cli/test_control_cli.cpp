@@ -16,6 +16,21 @@ using namespace rodlab::testing::cli;
 namespace {
 const std::string kScene = quote(std::string(RODLAB_SOURCE_DIR) + "/scenes/control-cable.yaml");
 const std::string kCables = quote(std::string(RODLAB_SOURCE_DIR) + "/scenes/cable-driven.yaml");
+
+/// `rodlab control SCENE ARGS --out result.json` in the sandbox: the exit status must be
+/// `status`; the result file, parsed.
+nlohmann::json control(const Sandbox& box, const std::string& scene, const std::string& args,
+                       int status = 0) {
+  const Run r = box.run("control " + scene + " " + args + " --out result.json");
+  BOOST_TEST_REQUIRE(r.status == status, r.err);
+  return nlohmann::json::parse(read(box.work / "result.json"));
+}
+
+/// Every input of the series inside the control robot's [0, 0.5] N.
+void inputs_within_limits(const nlohmann::json& j) {
+  for (const auto& u : j["series"]["u"])
+    for (double v : u) BOOST_TEST((v >= 0.0 && v <= 0.5));
+}
 }  // namespace
 
 // The middle circle (r = 1 cm, 4 s) at dt_c = 0.1 s, H = 2 on the implicit midpoint (N = 20,
@@ -23,16 +38,13 @@ const std::string kCables = quote(std::string(RODLAB_SOURCE_DIR) + "/scenes/cabl
 // its implicit scheme: 3.45 % at dt 0.01 s, 6.90 % at 0.1 s), tensions within [0, 0.5] N.
 BOOST_AUTO_TEST_CASE(nlsq_mpc_tracks_the_middle_circle) {
   Sandbox box;
-  const Run r = box.run("control " + kScene + " --controller nlsq-mpc --task track --horizon 2 "
-                                 "--dt-control 0.1 --out track.json");
-  BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const auto j = nlohmann::json::parse(read(box.work / "track.json"));
+  const auto j = control(box, kScene, "--controller nlsq-mpc --task track --horizon 2 "
+                                      "--dt-control 0.1");
   BOOST_TEST(j["schema"] == "rodlab.control-result/1");
   BOOST_TEST(j["controller"] == "nlsq-mpc");
   BOOST_TEST(j["scheme"] == "implicit-midpoint");
   BOOST_TEST(j["series"]["t"].size() == 40u);
-  for (const auto& u : j["series"]["u"])
-    for (double v : u) BOOST_TEST((v >= 0.0 && v <= 0.5));
+  inputs_within_limits(j);
   const double mean = j["summary"]["mean_error_pct_L"];
   BOOST_TEST_MESSAGE("mean tracking error " << mean << " % of L");
   BOOST_TEST(mean < 1.0);
@@ -44,10 +56,7 @@ BOOST_AUTO_TEST_CASE(nlsq_mpc_tracks_the_middle_circle) {
 // thesis: 10 of 10 for NLSQ on its implicit scheme; measured 10 of 10 here too).
 BOOST_AUTO_TEST_CASE(nlsq_mpc_reaches_dynamic_workspace_targets) {
   Sandbox box;
-  const Run r = box.run("control " + kScene + " --controller nlsq-mpc --task reach --targets 5 "
-                                              "--horizon 5 --out reach.json");
-  BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const auto j = nlohmann::json::parse(read(box.work / "reach.json"));
+  const auto j = control(box, kScene, "--controller nlsq-mpc --task reach --targets 5 --horizon 5");
   BOOST_TEST(j["targets"]["drawn_from"] == "dynamic-workspace");
   BOOST_TEST(j["targets"]["points"].size() == 5u);
   for (const auto& p : j["targets"]["points"]) {
@@ -61,10 +70,8 @@ BOOST_AUTO_TEST_CASE(nlsq_mpc_reaches_dynamic_workspace_targets) {
 // threshold (5 % of L), inputs within limits; the targets and their source are in the result.
 BOOST_AUTO_TEST_CASE(quasi_static_reaches_drawn_targets) {
   Sandbox box;
-  const Run r = box.run("control " + kCables + " --controller quasi-static --task reach --targets 10 --seed 3 "
-                                  "--out reach.json");
-  BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const auto j = nlohmann::json::parse(read(box.work / "reach.json"));
+  const auto j = control(box, kCables, "--controller quasi-static --task reach --targets 10 "
+                                       "--seed 3");
   BOOST_TEST(j["targets"]["drawn_from"] == "static-workspace");
   BOOST_TEST(j["targets"]["points"].size() == 10u);
   BOOST_TEST(j["seed"] == 3);
@@ -77,14 +84,10 @@ BOOST_AUTO_TEST_CASE(quasi_static_reaches_drawn_targets) {
 // tension inside its limits.
 BOOST_AUTO_TEST_CASE(lqr_holds_drawn_targets) {
   Sandbox box;
-  const Run r = box.run("control " + kScene + " --controller lqr --task hold --targets 2 "
-                                              "--nodes 10 --out hold.json");
-  BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const auto j = nlohmann::json::parse(read(box.work / "hold.json"));
+  const auto j = control(box, kScene, "--controller lqr --task hold --targets 2 --nodes 10");
   BOOST_TEST(j["controller"] == "lqr");
   BOOST_TEST(j["summary"]["success_rate"] == 1.0);
-  for (const auto& u : j["series"]["u"])
-    for (double v : u) BOOST_TEST((v >= 0.0 && v <= 0.5));
+  inputs_within_limits(j);
 }
 
 // iLQR tracks a quarter of the middle circle (N = 6, H = 2, dt_c = 0.1 s: 10 control steps) below
@@ -92,26 +95,20 @@ BOOST_AUTO_TEST_CASE(lqr_holds_drawn_targets) {
 // docs/control.md "iLQR").
 BOOST_AUTO_TEST_CASE(ilqr_tracks_a_quarter_circle) {
   Sandbox box;
-  const Run r = box.run("control " + kScene + " --controller ilqr --task track --horizon 2 "
-                                              "--nodes 6 --dt-control 0.1 "
-                                              "--set control.trajectory.circle.laps=0.25 "
-                                              "--out ilqr.json");
-  BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const auto j = nlohmann::json::parse(read(box.work / "ilqr.json"));
+  const auto j = control(box, kScene, "--controller ilqr --task track --horizon 2 --nodes 6 "
+                                      "--dt-control 0.1 "
+                                      "--set control.trajectory.circle.laps=0.25");
   BOOST_TEST(j["controller"] == "ilqr");
   BOOST_TEST(j["series"]["t"].size() == 10u);
   BOOST_TEST(double(j["summary"]["mean_error_pct_L"]) < 1.0);
-  for (const auto& u : j["series"]["u"])
-    for (double v : u) BOOST_TEST((v >= 0.0 && v <= 0.5));
+  inputs_within_limits(j);
 }
 
 // A target beyond the rod's length: the closest feasible tip, exit 1, the reason in the result.
 BOOST_AUTO_TEST_CASE(unreachable_target_exits_1_with_a_reason) {
   Sandbox box;
-  const Run r = box.run("control " + kCables + " --controller quasi-static --task reach "
-                                  "--set 'control.targets=[[0, 0, 0.2]]' --out far.json");
-  BOOST_TEST(r.status == 1);
-  const auto j = nlohmann::json::parse(read(box.work / "far.json"));
+  const auto j = control(box, kCables, "--controller quasi-static --task reach "
+                                       "--set 'control.targets=[[0, 0, 0.2]]'", 1);
   BOOST_TEST(!j["reason"].is_null());
   BOOST_TEST(contains(j["reason"].get<std::string>(), "unreachable"));
   BOOST_TEST(j["episodes"][0]["success"] == false);
