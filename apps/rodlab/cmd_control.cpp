@@ -52,20 +52,14 @@ scene::Control read_control(OptionReader& reader, const scene::Scene& scene) {
   return c;
 }
 
-/// The plant's scheme: --scheme, else dynamics.scheme, else implicit-midpoint (the thesis'
-/// NLSQ plant); its step: dynamics.dt when set, else dt_control (plant.hpp).
+/// The plant's scheme and solver: --scheme, else dynamics.scheme, else implicit-midpoint (the
+/// thesis' NLSQ plant), the rest as `rodlab dynamic`'s; its step: dynamics.dt when set, else
+/// dt_control (plant.hpp).
 solvers::dynamics::DynamicSolveOptions read_plant(const SolveOptions& o, const scene::Scene& scene) {
-  solvers::dynamics::DynamicSolveOptions s;
-  s.scheme = o.scheme ? std::string(o.scheme->name)
-             : scene.dynamics && scene.dynamics->scheme ? *scene.dynamics->scheme
-                                                        : std::string("implicit-midpoint");
-  s.nodes = o.nodes.value_or(scene.solver.nodes);
-  s.tol = o.tol.value_or(scene.solver.tol);
-  s.max_iterations = scene.solver.max_iterations;
-  solvers::dynamics::apply_scene_options(scene, s);
-  if (o.grid) s.grid = *solvers::dynamics::shooting_grid_from_name(*o.grid);
+  const std::string scheme = scene.dynamics && scene.dynamics->scheme ? *scene.dynamics->scheme
+                                                                       : "implicit-midpoint";
+  solvers::dynamics::DynamicSolveOptions s = resolve_dynamic_solver(o, scene, scheme, "control").solve;
   if (scene.dynamics && scene.dynamics->dt) s.dt = *scene.dynamics->dt;
-  s.max_wall_time = o.max_wall_time.value_or(0.0);
   return s;
 }
 

@@ -195,11 +195,10 @@ std::string scene_dynamics_scheme(const scene::Scene& scene) {
   return solvers::dynamics::DynamicSolveOptions{}.scheme;
 }
 
-DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& scene,
-                               std::string_view command) {
-  const scene::Dynamics dynamics = scene.dynamics.value_or(scene::Dynamics{});
-  DynamicRun run{chosen_scheme(options, scene, scene_dynamics_scheme(scene), "dynamics.scheme",
-                               Problem::dynamics, command),
+DynamicRun resolve_dynamic_solver(const SolveOptions& options, const scene::Scene& scene,
+                                  std::string_view scene_scheme, std::string_view command) {
+  DynamicRun run{chosen_scheme(options, scene, scene_scheme, "dynamics.scheme", Problem::dynamics,
+                               command),
                  true,
                  {}};
   auto& solve = run.solve;
@@ -211,6 +210,20 @@ DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& 
                                     solvers::min_nodes(Problem::dynamics), solve.nodes));
   solve.tol = options.tol.value_or(scene.solver.tol);
   solve.max_iterations = scene.solver.max_iterations;
+  solve.rtol = options.rtol.value_or(solve.rtol);
+  solve.atol = options.atol.value_or(solve.atol);
+  solvers::dynamics::apply_scene_options(scene, solve);  // then the command line over the scene
+  if (options.alpha) solve.alpha = *options.alpha;
+  if (options.grid) solve.grid = *solvers::dynamics::shooting_grid_from_name(*options.grid);
+  solve.max_wall_time = options.max_wall_time.value_or(0.0);
+  return run;
+}
+
+DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& scene,
+                               std::string_view command) {
+  DynamicRun run = resolve_dynamic_solver(options, scene, scene_dynamics_scheme(scene), command);
+  auto& solve = run.solve;
+  const scene::Dynamics dynamics = scene.dynamics.value_or(scene::Dynamics{});
   const auto t_end = options.t_end ? options.t_end : dynamics.t_end;
   if (!t_end)
     throw UsageError("--t-end: no end time; give --t-end T or set dynamics.t_end in " +
@@ -223,12 +236,6 @@ DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& 
     throw UsageError("--dt: the time step " + io::format_number(dt.value) +
                      " s exceeds the end time " + io::format_number(solve.t_end) + " s");
   solve.output_every = options.output_every.value_or(dynamics.output_every);
-  solve.rtol = options.rtol.value_or(solve.rtol);
-  solve.atol = options.atol.value_or(solve.atol);
-  solvers::dynamics::apply_scene_options(scene, solve);  // then the command line over the scene
-  if (options.alpha) solve.alpha = *options.alpha;
-  if (options.grid) solve.grid = *solvers::dynamics::shooting_grid_from_name(*options.grid);
-  solve.max_wall_time = options.max_wall_time.value_or(0.0);
   return run;
 }
 

@@ -119,5 +119,9 @@ StaticRun resolve_static_run(const SolveOptions& options, const scene::Scene& sc
                              std::string_view command);
 DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& scene,
                                std::string_view command);
+/// The solver part of it alone (no time settings): scheme (--scheme, else `scene_scheme`,
+/// checked to fit), nodes, tol, iterations, ida's tolerances, alpha, grid, the wall-time guard.
+DynamicRun resolve_dynamic_solver(const SolveOptions& options, const scene::Scene& scene,
+                                  std::string_view scene_scheme, std::string_view command);
 
 }  // namespace rodlab::cli

@@ -11,6 +11,7 @@
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/registry.hpp"
 #include "rodlab/solvers/statics/workspace.hpp"
+#include "../dynamics/tangent_state.hpp"
 
 namespace rodlab::solvers::control {
 namespace {
@@ -76,14 +77,11 @@ Plant::Plant(const scene::Scene& scene, const PlantOptions& options)
   const auto c = rod::characteristics(problem_->model(), options.solver.nodes,
                                       rod::TipSupport::free);
   const double T = 1.0 / c.first_bending_frequency_hz;
-  const int n = options.solver.nodes;
-  const int strain = problem_->is_kirchhoff() ? 3 : 6;
   state_scale_.resize(stepper_->tangent_size());
-  int i = 0;
-  for (int j = 0; j + 1 < n; ++j)
-    for (int k = 0; k < strain; ++k) state_scale_[i++] = k < 3 ? 1.0 / L : 1e-2;
-  for (int j = 1; j < n; ++j)
-    for (int k = 0; k < 6; ++k) state_scale_[i++] = k < 3 ? 1.0 / T : L / T;
+  const dynamics::StaggeredTangent layout(options.solver.nodes, problem_->model().xi_star(),
+                                          problem_->is_kirchhoff());
+  layout.fill(1.0 / L, 1e-2, 1.0 / T, L / T,
+              std::span<double>(state_scale_.data(), state_scale_.size()));
 }
 
 void Plant::set_input(const Eigen::Ref<const Eigen::VectorXd>& u) {

@@ -28,6 +28,18 @@ class StaggeredTangent {
       for (int c = 0; c < 6; ++c) x[i++] = eta[j][c];
   }
 
+  /// A value per coordinate in this layout: `angular` and `linear` for the strains' angular and
+  /// linear parts, `spin` and `velocity` for the velocities' (sizes for finite differences).
+  void fill(double angular, double linear, double spin, double velocity,
+            std::span<double> out) const {
+    check(out.size());
+    std::size_t i = 0;
+    for (int j = 0; j + 1 < nodes_; ++j)
+      for (int c = 0; c < strain_dim_; ++c) out[i++] = c < 3 ? angular : linear;
+    for (int j = 1; j < nodes_; ++j)
+      for (int c = 0; c < 6; ++c) out[i++] = c < 3 ? spin : velocity;
+  }
+
   /// xi += dx's strain part, eta += its velocity part.
   void add(std::span<const double> dx, std::span<lie::Vector6> xi,
            std::span<lie::Vector6> eta) const {
