@@ -123,6 +123,12 @@ dynamics::StepStatus Linearisation::difference(Plant& plant,
 
 dynamics::StepStatus Linearisation::jacobians(Plant& plant, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
                                               Eigen::MatrixXd& C, Eigen::MatrixXd& D) {
+  if (options_.method == JacobianMethod::implicit_function && plant.has_step_linearisation()) {
+    plant.save(start_);
+    const dynamics::StepStatus status = plant.advance_linearised(A, B, C, D);
+    plant.restore(start_);
+    return status;
+  }
   const int n = plant.state_size(), m = plant.input_count();
   A.resize(n, n);
   B.resize(n, m);

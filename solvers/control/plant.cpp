@@ -113,6 +113,34 @@ dynamics::StepStatus Plant::advance() {
   return total;
 }
 
+dynamics::StepStatus Plant::advance_linearised(Eigen::MatrixXd& A, Eigen::MatrixXd& B,
+                                               Eigen::MatrixXd& C, Eigen::MatrixXd& D) {
+  dynamics::StepStatus total;
+  for (int k = 0; k < substeps_; ++k) {
+    // A = A_k ... A_1, B = A_k (... (A_2 B_1 + B_2) ...) + B_k
+    const dynamics::StepStatus s =
+        stepper_->step_linearised(t_, dt_, k == 0 ? A : sub_A_, k == 0 ? B : sub_B_);
+    total.iterations += s.iterations;
+    if (!s.ok) {
+      total.ok = false;
+      total.reason = s.reason;
+      total.reached = s.reached;
+      return total;
+    }
+    if (k > 0) {
+      A = sub_A_ * A;
+      B = sub_A_ * B + sub_B_;
+    }
+    t_ += dt_;
+  }
+  RODLAB_THROW_UNLESS(B.cols() == input_count(), "control: the linearised step has {} inputs, the plant {}",
+                      B.cols(), input_count());
+  stepper_->tip_jacobian(tip_J_);
+  C.noalias() = tip_J_ * A;
+  D.noalias() = tip_J_ * B;
+  return total;
+}
+
 PlantSnapshot Plant::snapshot() const { return {stepper_->clone(), t_, u_}; }
 
 void Plant::save(PlantSnapshot& s) const {

@@ -40,6 +40,31 @@ class StaggeredTangent {
       for (int c = 0; c < 6; ++c) out[i++] = c < 3 ? spin : velocity;
   }
 
+  /// The index of tangent coordinate i in the full layout: six per segment strain (j = 0..N-2),
+  /// then six per node velocity (j = 1..N-1).
+  int full_index(int i) const {
+    const int strains = (nodes_ - 1) * strain_dim_;
+    return i < strains ? 6 * (i / strain_dim_) + i % strain_dim_ : 6 * (nodes_ - 1) + (i - strains);
+  }
+
+  /// T = d p_tip / dx (3 x size(); the velocities' columns are zero) of the poses
+  /// g_(j+1) = g_j exp(ds xi_j): moving xi_j by d moves segment j's transform by
+  /// exp(ds xi_j) exp(dexp_{-ds xi_j} ds d) (the right Jacobian), hence the tip by
+  /// g_tip exp(Ad_{P_j^-1} dexp_{-ds xi_j} ds d), P_j = g_(j+1)^-1 g_tip, and its position by
+  /// R_tip times that twist's linear part.
+  void tip_jacobian(std::span<const SE3> g, std::span<const lie::Vector6> xi, double ds,
+                    Eigen::MatrixXd& T) const {
+    T.setZero(3, size());
+    const SE3& tip = g.back();
+    const lie::Matrix3 R = tip.rotation_matrix();
+    for (int j = 0; j + 1 < nodes_; ++j) {
+      const SE3 P = g[j + 1].inverse() * tip;
+      const lie::Matrix6 J = P.inverse().Ad() * lie::se3::dexp(-ds * xi[j]) * ds;
+      const Eigen::Matrix<double, 3, 6> dp = R * J.bottomRows<3>();
+      T.middleCols(j * strain_dim_, strain_dim_) = dp.leftCols(strain_dim_);
+    }
+  }
+
   /// xi += dx's strain part, eta += its velocity part.
   void add(std::span<const double> dx, std::span<lie::Vector6> xi,
            std::span<lie::Vector6> eta) const {

@@ -60,6 +60,7 @@ class StaggeredShootingStepper final : public Stepper {
     }
     eta_.assign(n_, Vector6::Zero());
     eta_u_ = eta_hist_ = eta_;
+    march_.assign(n_, MarchNode{Vector6::Zero(), Vector6::Zero(), SE3()});
     xi_u_ = xi_hist_ = xi_ref_ = xi_;
     clamped_ = problem.tip_clamped();
     entry_at_.assign(n_, 0);
@@ -94,7 +95,25 @@ class StaggeredShootingStepper final : public Stepper {
     if (initial.equilibrium) settle();
   }
 
-  StepStatus step(double t, double dt) override {
+  StepStatus step(double t, double dt) override { return take_step(t, dt, nullptr, nullptr); }
+
+  // The tangent-linear step: the shooting's own converged equations differentiated (below);
+  // muscles, length control and a clamped tip are not covered (their extra unknowns and clamp
+  // rows would need their own rows): controllers difference whole steps there.
+  bool has_step_linearisation() const override { return m_ == 0 && !muscles_ && !clamped_; }
+
+  StepStatus step_linearised(double t, double dt, Eigen::MatrixXd& A, Eigen::MatrixXd& B) override {
+    if (!has_step_linearisation())
+      throw unsupported("step_linearised with muscles, length control or a clamped tip");
+    return take_step(t, dt, &A, &B);
+  }
+
+  void tip_jacobian(Eigen::MatrixXd& T) const override { tangent_.tip_jacobian(g_, xi_, ds_, T); }
+
+ private:
+  /// step(); with A and B also its linearisation (step_linearised), taken at the converged
+  /// solution before the rule advances the state.
+  StepStatus take_step(double t, double dt, Eigen::MatrixXd* A, Eigen::MatrixXd* B) {
     t_u_ = t + rule_->theta() * dt;
     c_ = rule_->coefficient(dt);
     end_ = rule_->end_coefficient();
@@ -110,7 +129,14 @@ class StaggeredShootingStepper final : public Stepper {
       return StepStatus::failed(rodlab::format(
           "{}: a segment's strain did not converge at the solution in the step from t = {:g} s",
           name_, t));
-    // the last shot was at the solution: its profiles and powers are current.
+    // the last shot was at the solution: its profiles, march and powers are current.
+    if (A != nullptr) {
+      linearise(dt, *A, *B);
+      if (inner_failed_)
+        return StepStatus::failed(rodlab::format(
+            "{}: a segment's strain did not converge in the linearisation of the step from t = "
+            "{:g} s", name_, t));
+    }
     const double w0 = rule_->ledger_start_weight(), w1 = 1.0 - w0;
     ledger_.dissipated += dt * (w0 * dissipated_start_ + w1 * dissipated_u_);
     ledger_.work_in += dt * (w0 * work_start_ + w1 * work_u_);
@@ -125,6 +151,8 @@ class StaggeredShootingStepper final : public Stepper {
     status.iterations = out.shots;
     return status;
   }
+
+ public:
 
   Energy energy() const override {
     Energy e = staggered_energy(P_, g_, eta_, xi_, ds_,
@@ -168,6 +196,7 @@ class StaggeredShootingStepper final : public Stepper {
     xi_ = o.xi_, eta_ = o.eta_, xi_u_ = o.xi_u_, eta_u_ = o.eta_u_;
     xi_hist_ = o.xi_hist_, eta_hist_ = o.eta_hist_, xi_ref_ = o.xi_ref_;
     g_ = o.g_;
+    march_ = o.march_;
     inner_failed_ = o.inner_failed_;
     F_ = o.F_;
     plain_ = o.plain_;
@@ -194,6 +223,74 @@ class StaggeredShootingStepper final : public Stepper {
   }
 
  private:
+  /// The march's state at a node: its wrench before its entry loads, its velocity at t_u, its
+  /// pose.
+  struct MarchNode {
+    Vector6 lambda_pre, eta;
+    SE3 g;
+  };
+
+  /// Segment j and node j + 1 of the march (header): node j + 1's state from node j's, the
+  /// segment's twist X = ds xi_j (solved from the guess X0), its viscous dissipation and input
+  /// power added to `dissipated` and `work`. Reads the step's c_, t_u_, F_, histories and
+  /// references and writes nothing else, so that the linearisation can evaluate it perturbed.
+  MarchNode march_segment(int j, const MarchNode& in, const Vector6& X0, Vector6& X,
+                          double& dissipated, double& work) {
+    const Vector6& M = P_.model().M_diag();
+    const Vector6& V = P_.model().V_diag();
+    const double s_mid = (j + 0.5) * ds_;
+    // segment j: sigma(xi_j) = dexp^T_{ds xi_j} lambda_j, lambda_j = lambda_pre - entry(xi_j)
+    Vector6 lambda;
+    X = segment_twist(j, in.lambda_pre, X0, lambda);
+    const Vector6 xi = X / ds_;
+    // its rate and the viscous and actuator power of the segment
+    const Vector6 xi_dot = c_ * xi + xi_hist_[j];
+    Vector6 xk_dot = xi_dot;
+    if (P_.is_kirchhoff()) xk_dot.tail<3>().setZero();
+    dissipated += ds_ * xk_dot.dot(V.cwiseProduct(xk_dot));
+    if (muscles_) dissipated += ds_ * P_.embedded_dissipation(xk_dot, s_mid);
+    if (actuators_) work += ds_ * P_.actuator_power(xi, xk_dot, s_mid, F_);
+    if (entry_at_[j]) work += entry_loads(j, xi).dot(in.eta);  // at node j, with its eta
+    // node j + 1: compatibility, then its balance
+    const SE3 G = small::exp(X);
+    MarchNode out;
+    out.eta = G.inverse().Ad_apply(in.eta) +
+              ds_ * small::dexp_apply(-X, xi_dot, small::bcd(X.head<3>().squaredNorm()));
+    out.g = in.g * G;
+    const Vector6& eta = out.eta;
+    const int k = j + 1;
+    const bool tip = k == n_ - 1;
+    const double w = tip ? 0.5 * ds_ : ds_;
+    const SO3& R = out.g.rotation();
+    const Vector6 applied = P_.applied_load(R, t_u_), drag = P_.drag_load(eta);
+    if (muscles_) {
+      // the full node inertia and the muscles' weight on the node's cell (3.16)-(3.20)
+      const double s = k * ds_;
+      const Vector6 Meta = inertia_[k] * eta;
+      out.lambda_pre =
+          G.coAd_apply(lambda) +
+          w * (inertia_[k] * (c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
+               P_.gravity_load(R) -
+               P_.embedded_weight(R, s - 0.5 * ds_, std::min(P_.length(), s + 0.5 * ds_), s) -
+               applied - drag);
+    } else {
+      const Vector6 Meta = M.cwiseProduct(eta);
+      out.lambda_pre = G.coAd_apply(lambda) +
+                       w * (M.cwiseProduct(c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
+                            P_.gravity_load(R) - applied - drag);                  // (3.41), (3.8)
+    }
+    dissipated -= w * drag.dot(eta);
+    work += w * applied.dot(eta);
+    if (tip && entry_at_[k]) {
+      // a cable entering at the tip: its load uses the last segment's strain (inside, the
+      // segment that starts at the node, solved with it above), as the semi-discrete rod does
+      const Vector6 entry = entry_loads(k, xi);
+      work += entry.dot(eta);
+      out.lambda_pre -= entry;
+    }
+    return out;
+  }
+
   /// The march from the base with lambda_0 = x * scale (header); returns the scaled tip
   /// residual lambda_(N-1) - W_tip, leaves the profiles at t_u and their powers behind. With
   /// actuator unknowns (x_e after the six: a muscle's Delta / L, a length-controlled actuator's
@@ -203,76 +300,30 @@ class StaggeredShootingStepper final : public Stepper {
   /// (staggered_paths.hpp) of SemiDiscreteRod, so that the march solves ida's equations.
   template <class Vec>
   Vec shoot(const Vec& x) {
-    const Vector6& M = P_.model().M_diag();
-    const Vector6& V = P_.model().V_diag();
-    const bool kirchhoff = P_.is_kirchhoff();
-    Vector6 lambda_pre = x.template head<6>().cwiseProduct(scale_);  // node j's balance before its entry load
+    // node 0: lambda_0 before its entry load (none at the base), at rest, at the base pose
+    MarchNode node{x.template head<6>().cwiseProduct(scale_), Vector6::Zero(), P_.base()};
     if (m_ > 0) {
       for (int e = 0; e < m_; ++e)
         unknown_[e] = x[6 + e] * (is_muscle_[e] ? P_.length() : scale_[3]);
       F_ = P_.forces(t_u_, unknown_.data(), paths_.rest().data());
     }
-    Vector6 eta = Vector6::Zero();
-    SE3 g = P_.base();
-    SE3 g_end = g;  // a clamped tip: the end-of-step poses (tip_residual)
+    SE3 g_end = node.g;  // a clamped tip: the end-of-step poses (tip_residual)
     const double a = end_;
     double dissipated = 0.0, work = 0.0;
     eta_u_[0].setZero();
+    march_[0] = node;
     // warm start from the last shot's strains unless that shot failed somewhere (then from the
     // state at the start of the step)
     const std::vector<Vector6>& guess = inner_failed_ ? xi_ : xi_u_;
     inner_failed_ = false;
     for (int j = 0; j + 1 < n_; ++j) {
-      const double s_mid = (j + 0.5) * ds_;
-      // segment j: sigma(xi_j) = dexp^T_{ds xi_j} lambda_j, lambda_j = lambda_pre - entry(xi_j)
-      Vector6 lambda;
-      const Vector6 X = segment_twist(j, lambda_pre, ds_ * guess[j], lambda);
+      Vector6 X;
+      node = march_segment(j, node, ds_ * guess[j], X, dissipated, work);
       const Vector6 xi = X / ds_;
       xi_u_[j] = xi;
-      // its rate and the viscous and actuator power of the segment
-      const Vector6 xi_dot = c_ * xi + xi_hist_[j];
-      Vector6 xk_dot = xi_dot;
-      if (kirchhoff) xk_dot.tail<3>().setZero();
-      dissipated += ds_ * xk_dot.dot(V.cwiseProduct(xk_dot));
-      if (muscles_) dissipated += ds_ * P_.embedded_dissipation(xk_dot, s_mid);
-      if (actuators_) work += ds_ * P_.actuator_power(xi, xk_dot, s_mid, F_);
-      if (entry_at_[j]) work += entry_loads(j, xi).dot(eta);  // at node j, with its eta
+      eta_u_[j + 1] = node.eta;
+      march_[j + 1] = node;
       if (clamped_) g_end = g_end * SE3::exp(ds_ * (a * xi + (1.0 - a) * xi_[j]));
-      // node j + 1: compatibility, then its balance
-      const SE3 G = small::exp(X);
-      eta = G.inverse().Ad_apply(eta) +
-            ds_ * small::dexp_apply(-X, xi_dot, small::bcd(X.head<3>().squaredNorm()));
-      g = g * G;
-      const int k = j + 1;
-      eta_u_[k] = eta;
-      const bool tip = k == n_ - 1;
-      const double w = tip ? 0.5 * ds_ : ds_;
-      const SO3& R = g.rotation();
-      const Vector6 applied = P_.applied_load(R, t_u_), drag = P_.drag_load(eta);
-      if (muscles_) {
-        // the full node inertia and the muscles' weight on the node's cell (3.16)-(3.20)
-        const double s = k * ds_;
-        const Vector6 Meta = inertia_[k] * eta;
-        lambda_pre = G.coAd_apply(lambda) +
-                     w * (inertia_[k] * (c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
-                          P_.gravity_load(R) -
-                          P_.embedded_weight(R, s - 0.5 * ds_, std::min(P_.length(), s + 0.5 * ds_), s) -
-                          applied - drag);
-      } else {
-        const Vector6 Meta = M.cwiseProduct(eta);
-        lambda_pre = G.coAd_apply(lambda) +
-                     w * (M.cwiseProduct(c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
-                          P_.gravity_load(R) - applied - drag);                    // (3.41), (3.8)
-      }
-      dissipated -= w * drag.dot(eta);
-      work += w * applied.dot(eta);
-      if (tip && entry_at_[k]) {
-        // a cable entering at the tip: its load uses the last segment's strain (inside, the
-        // segment that starts at the node, solved with it above), as the semi-discrete rod does
-        const Vector6 entry = entry_loads(k, xi);
-        work += entry.dot(eta);
-        lambda_pre -= entry;
-      }
     }
     dissipated_u_ = dissipated;
     Vec r;
@@ -282,9 +333,9 @@ class StaggeredShootingStepper final : public Stepper {
       work_u_ = work;
       r.template head<6>() = P_.clamp_mismatch(g_end);
     } else {
-      const Vector6 W = P_.tip_load(g.rotation(), t_u_);
-      work_u_ = work + W.dot(eta);
-      r.template head<6>() = (lambda_pre - W).cwiseQuotient(scale_);
+      const Vector6 W = P_.tip_load(node.g.rotation(), t_u_);
+      work_u_ = work + W.dot(node.eta);
+      r.template head<6>() = (node.lambda_pre - W).cwiseQuotient(scale_);
     }
     if (m_ > 0) {
       for (int j = 0; j + 1 < n_; ++j) xi_end_[j] = a * xi_u_[j] + (1.0 - a) * xi_[j];
@@ -323,9 +374,134 @@ class StaggeredShootingStepper final : public Stepper {
     if (muscles_) {
       muscle_references();
     } else {
-      const Vector6 K_xi_star = P_.model().K_diag().cwiseProduct(P_.model().xi_star());
-      for (int j = 0; j + 1 < n_; ++j)
-        xi_ref_[j] = (K_xi_star - V.cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
+      for (int j = 0; j + 1 < n_; ++j) strain_reference(j);
+    }
+  }
+
+  /// Segment j's xi_ref = (K xi* - V h_j) / Kt (no muscles).
+  void strain_reference(int j) {
+    const auto& model = P_.model();
+    xi_ref_[j] = (model.K_diag().cwiseProduct(model.xi_star()) -
+                  model.V_diag().cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
+  }
+
+  // --- the tangent-linear step (step_linearised; docs/control.md "Linearisation") -----------
+  // The step solves r(lambda_0; x, u) = 0 (the tip residual of the march) and returns
+  // x+ = a xi_u + (1 - a) x (TimeRule::end_coefficient) from the march's profiles. By the
+  // implicit function theorem dlambda_0 = -r_lambda^-1 (r_x dx + r_u du), and the profiles'
+  // derivative is the march's partials plus their lambda_0 column times dlambda_0. The march's
+  // partials are a tangent-linear march: node j's state z_j = (lambda_pre, eta, rho) (rho the
+  // rotation, R exp(rho)) maps to z_(j+1) and xi_u,j through march_segment, whose local Jacobians
+  // in z_j and in its parameters (h_j of the strain, h_(j+1) of the velocity, the forces F) are
+  // central differences of that one segment at the converged solution; chained along the rod
+  // they give every partial at once: 2 (27 + m) segment evaluations per segment, warm-started
+  // from the solution, instead of a shooting solve per column. x enters through the histories
+  // only, h = slope x (TimeRule::history_slope). Accurate to about 1e-9 relative (the local
+  // steps below; tests/control/test_linearisation.cpp compares with whole-step differences).
+
+  static constexpr int kNodeDim = 15;  ///< lambda_pre, eta, rho
+  using NodeVector = Eigen::Matrix<double, kNodeDim, 1>;
+  using LocalOut = Eigen::Matrix<double, kNodeDim + 6, 1>;  ///< z_(j+1), xi_u,j
+
+  /// Segment j's map from node j's converged state moved by z: node j + 1's (lambda_pre, eta,
+  /// rho) with rho relative to its converged rotation, and xi_u,j.
+  LocalOut local_map(int j, const NodeVector& z) {
+    MarchNode in = march_[j];
+    in.lambda_pre += z.head<6>();
+    in.eta += z.segment<6>(6);
+    in.g = SE3(in.g.rotation() * SO3::exp(z.tail<3>()), in.g.translation());
+    double dissipated = 0.0, work = 0.0;
+    Vector6 X;
+    const MarchNode out = march_segment(j, in, ds_ * xi_u_[j], X, dissipated, work);
+    LocalOut y;
+    y << out.lambda_pre, out.eta, (march_[j + 1].g.rotation().inverse() * out.g.rotation()).log(),
+        X / ds_;
+    return y;
+  }
+
+  /// The central difference of local_map in the parameter `value` (a member the march reads),
+  /// moved by +-h; `changed` refreshes what depends on it.
+  template <class Changed>
+  LocalOut parameter_difference(int j, double& value, double h, Changed changed) {
+    const double saved = value;
+    value = saved + h;
+    changed();
+    const LocalOut plus = local_map(j, NodeVector::Zero());
+    value = saved - h;
+    changed();
+    const LocalOut minus = local_map(j, NodeVector::Zero());
+    value = saved;
+    changed();
+    return (plus - minus) / (2.0 * h);
+  }
+
+  void linearise(double dt, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
+    const int ns = n_ - 1, nf = static_cast<int>(P_.actuators().size());
+    // columns of the partials: lambda_0 (scaled), x's strains and velocities (six per segment
+    // and per node 1..N-1), the forces
+    const int col_xi = 6, col_eta = 6 + 6 * ns, col_F = 6 + 12 * ns, n_in = col_F + nf;
+    const double slope = rule_->history_slope(dt), L = P_.length();
+    // local steps: lambda relative to its scale (E I / L: a radian of bend), rho 1e-5 rad,
+    // velocities 1e-4 rad/s and 1e-4 L/s, strains 1e-5 / L and 1e-7, forces 1e-5 E I / L^2
+    NodeVector h_node;
+    h_node << 1e-5 * scale_, Vector3::Constant(1e-4), Vector3::Constant(1e-4 * L),
+        Vector3::Constant(1e-5);
+    Vector6 h_strain, h_velocity;
+    h_strain << Vector3::Constant(1e-5 / L), Vector3::Constant(1e-7);
+    h_velocity = h_node.segment<6>(6);
+    const double h_force = 1e-5 * scale_[3];
+    lin_S_.setZero(kNodeDim, n_in);
+    lin_S_.topLeftCorner<6, 6>() = scale_.asDiagonal();
+    lin_D_.setZero(12 * ns, n_in);
+    Eigen::Matrix<double, kNodeDim + 6, kNodeDim> Lz;
+    lin_P_.resize(kNodeDim + 6, 12 + nf);
+    for (int j = 0; j < ns; ++j) {
+      for (int i = 0; i < kNodeDim; ++i) {
+        NodeVector z = NodeVector::Zero();
+        z[i] = h_node[i];
+        Lz.col(i) = (local_map(j, z) - local_map(j, -z)) / (2.0 * h_node[i]);
+      }
+      for (int i = 0; i < 6; ++i) {
+        lin_P_.col(i) = slope * parameter_difference(j, xi_hist_[j][i], std::abs(slope) * h_strain[i],
+                                                     [&] { strain_reference(j); });
+        lin_P_.col(6 + i) = slope * parameter_difference(j, eta_hist_[j + 1][i],
+                                                         std::abs(slope) * h_velocity[i], [] {});
+      }
+      for (int e = 0; e < nf; ++e)
+        lin_P_.col(12 + e) = P_.actuators()[e].force_per_input *
+                             parameter_difference(j, F_[e], h_force, [] {});
+      lin_Y_.noalias() = Lz * lin_S_;
+      lin_Y_.middleCols(col_xi + 6 * j, 6) += lin_P_.leftCols(6);
+      lin_Y_.middleCols(col_eta + 6 * j, 6) += lin_P_.middleCols(6, 6);
+      lin_Y_.rightCols(nf) += lin_P_.rightCols(nf);
+      lin_S_ = lin_Y_.topRows(kNodeDim);
+      lin_D_.middleRows(6 * j, 6) = lin_Y_.bottomRows(6);                 // xi_u,j
+      lin_D_.middleRows(6 * ns + 6 * j, 6) = lin_Y_.middleRows(6, 6);     // eta_u,(j+1)
+    }
+    // the tip residual (lambda_pre - W(R exp(rho))) / scale and the implicit function theorem
+    Eigen::Matrix<double, 6, 3> W_rho;
+    const SO3& R_tip = march_[ns].g.rotation();
+    for (int i = 0; i < 3; ++i) {
+      const Vector3 d = Vector3::Unit(i) * 1e-5;
+      W_rho.col(i) = (P_.tip_load(R_tip * SO3::exp(d), t_u_) - P_.tip_load(R_tip * SO3::exp(-d), t_u_)) / 2e-5;
+    }
+    lin_R_ = (lin_S_.topRows(6) - W_rho * lin_S_.bottomRows(3)).array().colwise() / scale_.array();
+    const Eigen::PartialPivLU<Matrix6> r_lambda(Matrix6(lin_R_.leftCols(6)));
+    lin_L_ = -r_lambda.solve(lin_R_.rightCols(n_in - 6));
+    lin_Y_ = lin_D_.rightCols(n_in - 6);
+    lin_Y_.noalias() += lin_D_.leftCols(6) * lin_L_;
+    // x+ = a u + (1 - a) x in the tangent coordinates
+    const double a = end_;
+    const int n = tangent_.size();
+    A.resize(n, n);
+    B.resize(n, nf);
+    for (int r = 0; r < n; ++r) {
+      const int fr = tangent_.full_index(r);
+      for (int c = 0; c < n; ++c) {
+        const int fc = tangent_.full_index(c);
+        A(r, c) = a * lin_Y_(fr, fc) + (fr == fc ? 1.0 - a : 0.0);
+      }
+      for (int e = 0; e < nf; ++e) B(r, e) = a * lin_Y_(fr, 12 * ns + e);
     }
   }
 
@@ -468,6 +644,8 @@ class StaggeredShootingStepper final : public Stepper {
   double end_ = 1.0;  ///< a of the end-of-step strains a xi_u + (1 - a) xi (1 while settling)
   double dissipated_start_ = 0.0, work_start_ = 0.0, dissipated_u_ = 0.0, work_u_ = 0.0;
   std::vector<Vector6> xi_, eta_, xi_u_, eta_u_, xi_hist_, eta_hist_, xi_ref_;
+  std::vector<MarchNode> march_;  ///< the last shot's march at the nodes
+  Eigen::MatrixXd lin_S_, lin_D_, lin_Y_, lin_P_, lin_R_, lin_L_;  ///< linearise()'s workspace
   std::vector<SE3> g_;
   std::vector<DynamicProblem::EntryNode> entries_;
   std::vector<char> entry_at_;

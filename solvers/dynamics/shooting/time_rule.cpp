@@ -23,6 +23,7 @@ class MidpointRule final : public TimeRule {
     const double c = coefficient(dt);
     for (std::size_t j = 0; j < x.size(); ++j) h[j] = -c * x[j];
   }
+  double history_slope(double dt) const override { return -coefficient(dt); }
   // x_(i+1) = 2 x_h - x_i   (3.53)-(3.54)
   void advance(RuleField, double, std::span<const Vector6> u, std::span<const Vector6>,
                std::span<Vector6> x) override {
@@ -67,6 +68,9 @@ class BdfAlphaRule final : public TimeRule {
     const auto& prev = previous_[k];
     const auto& rate = rate_[k];
     for (std::size_t j = 0; j < x.size(); ++j) h[j] = b.c1 * x[j] + b.c2 * prev[j] + b.d1 * rate[j];
+  }
+  double history_slope(double dt) const override {
+    return steps_ < kStartSteps ? -2.0 / dt : bdf_alpha_coefficients(alpha_, dt).c1;
   }
   // x_(i+1) = u; x_dot_(i+1) = c0 u + h kept for the next step's history.
   void advance(RuleField f, double dt, std::span<const Vector6> u, std::span<const Vector6> h,

@@ -14,10 +14,19 @@
 
 namespace rodlab::solvers::control {
 
+/// How jacobians() obtains A, B, C, D.
+enum class JacobianMethod {
+  /// The scheme's own linearised step (Plant::advance_linearised: the implicit function theorem
+  /// on its converged equations), where the scheme has one; else finite_difference.
+  implicit_function,
+  finite_difference,  ///< every column from differenced control steps (4.33)-(4.34)
+};
+
 struct LinearisationOptions {
   /// The step along a direction whose scaled size (dx / state_scale, du / input range) is 1.
   double relative_step = 1e-5;
   bool central = true;  ///< central differences (else forward, as (4.33)-(4.34))
+  JacobianMethod method = JacobianMethod::implicit_function;  ///< jacobians()' method
 };
 
 /// A directional derivative of one control step.
@@ -44,8 +53,9 @@ class Linearisation {
                                    const Eigen::VectorXd& x_next, const Vector3& tip_next,
                                    const PlantSnapshot& after);
 
-  /// A (n x n) and B (n x m), column by column, and the tip Jacobian C = d p_tip(x+) / d x and
-  /// D = d p_tip(x+) / d u (3 x n, 3 x m).
+  /// A (n x n) and B (n x m) and the tip Jacobian C = d p_tip(x+) / d x and
+  /// D = d p_tip(x+) / d u (3 x n, 3 x m): by options.method; finite differences column by
+  /// column.
   dynamics::StepStatus jacobians(Plant& plant, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
                                  Eigen::MatrixXd& C, Eigen::MatrixXd& D);
 

@@ -71,6 +71,14 @@ class Plant {
   /// is reported in the status and leaves the state where the scheme stopped.
   dynamics::StepStatus advance();
 
+  /// Whether advance_linearised() is available (the scheme differentiates its own step).
+  bool has_step_linearisation() const { return stepper_->has_step_linearisation(); }
+  /// advance() with the step's linearisation in tangent coordinates (Stepper::step_linearised,
+  /// chained over the substeps): A = dx+/dx, B = dx+/du, and the tip's C = dp(x+)/dx,
+  /// D = dp(x+)/du. Throws std::invalid_argument where has_step_linearisation() is false.
+  dynamics::StepStatus advance_linearised(Eigen::MatrixXd& A, Eigen::MatrixXd& B,
+                                          Eigen::MatrixXd& C, Eigen::MatrixXd& D);
+
   Vector3 tip() const { return stepper_->tip_position(); }
   const dynamics::Stepper& stepper() const { return *stepper_; }
 
@@ -98,6 +106,7 @@ class Plant {
   std::unique_ptr<dynamics::DynamicProblem> problem_;  // the steppers refer to it: fixed address
   std::unique_ptr<dynamics::Stepper> stepper_;
   Eigen::VectorXd lower_, upper_, u_, state_scale_;
+  Eigen::MatrixXd sub_A_, sub_B_, tip_J_;  ///< advance_linearised()'s workspace
   double dt_control_ = 0.0, dt_ = 0.0, t_ = 0.0;
   int substeps_ = 1;
 };

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "rodlab/result/static_result.hpp"
 #include "rodlab/solvers/dynamics/energy.hpp"
 
@@ -105,6 +107,21 @@ class Stepper {
   virtual void read_tangent(std::span<double> /*x*/) const { throw unsupported("read_tangent"); }
   /// Moves the state by dx in tangent coordinates (the poses and every derived quantity follow).
   virtual void add_tangent(std::span<const double> /*dx*/) { throw unsupported("add_tangent"); }
+
+  /// Whether step_linearised() is available here (else a controller differences whole steps).
+  virtual bool has_step_linearisation() const { return false; }
+  /// Takes the step of step(t, dt) and linearises it about the state it started from, in tangent
+  /// coordinates: A = dx+/dx (n x n) and B = dx+/du (n x m), u the actuators' drive inputs in
+  /// scene order (the held inputs: tension, pressure; DynamicProblem::hold_input). A failed step
+  /// leaves A and B unset. The implicit schemes differentiate their own converged equations
+  /// (the implicit function theorem, docs/control.md "Linearisation").
+  virtual StepStatus step_linearised(double /*t*/, double /*dt*/, Eigen::MatrixXd& /*A*/,
+                                     Eigen::MatrixXd& /*B*/) {
+    throw unsupported("step_linearised");
+  }
+  /// The tip position's derivative with respect to the current state's tangent coordinates
+  /// (3 x n; the velocities' columns are zero).
+  virtual void tip_jacobian(Eigen::MatrixXd& /*T*/) const { throw unsupported("tip_jacobian"); }
 
  protected:
   static std::invalid_argument unsupported(const char* what) {

@@ -48,6 +48,9 @@ class TimeRule {
   /// The history term h of every node for a step dt from the state x at t.
   virtual void history(RuleField f, double dt, std::span<const lie::Vector6> x,
                        std::span<lie::Vector6> h) = 0;
+  /// dh/dx_i of history(): the history's slope in the state at t (control's linearisation of a
+  /// step; the older history of BDF-alpha is held). Midpoint: -2/dt; BDF-alpha: c1 = -2/dt.
+  virtual double history_slope(double dt) const = 0;
   /// Completes the step: the state x (at t on entry, at t + dt on exit) from the converged
   /// unknowns u and the h of the step.
   virtual void advance(RuleField f, double dt, std::span<const lie::Vector6> u,
