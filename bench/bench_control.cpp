@@ -4,10 +4,12 @@
 //  - mpc_track_step/H: one control step of NLSQ-MPC tracking the middle circle (plan + step of
 //    the plant), warm-started as in `rodlab control`, after 20 steps onto the circle; counters: LM iterations, real-time ratio
 //    (time per step / dt_c).
-//  - linearise_full: A, B, C, D of one control step by central differences (2 (n + m) steps);
+//  - linearise_full/M: A, B, C, D of one control step, M = 0 by the implicit function theorem
+//    (the scheme's linearised step), M = 1 by central differences (2 (n + m) steps);
 //    linearise_directional: one directional derivative (two control steps).
-//  - ilqr_iteration: one iLQR iteration on the rod at H = 5 (the linearisation of every stage
-//    is its cost).
+//  - ilqr_iteration/H/M: one iLQR iteration on the rod at horizon H (the linearisation of every
+//    stage is its cost), M as above; ilqr_iteration counts real_time_ratio as if one iteration
+//    per control step (its time over dt_c).
 // Run: build/bin/bench_control --benchmark_repetitions=5 (one core, idle machine).
 #include <benchmark/benchmark.h>
 
@@ -79,15 +81,20 @@ void mpc_track_step(benchmark::State& state) {
 }
 BENCHMARK(mpc_track_step)->Arg(1)->Arg(10)->Arg(20)->Unit(benchmark::kMillisecond);
 
+JacobianMethod method_of(const benchmark::State& state, int arg) {
+  return state.range(arg) == 0 ? JacobianMethod::implicit_function
+                               : JacobianMethod::finite_difference;
+}
+
 void linearise_full(benchmark::State& state) {
   Plant plant(control_cable(), plant_options());
   drive(plant, 3);
-  Linearisation lin(plant);
+  Linearisation lin(plant, LinearisationOptions{.method = method_of(state, 0)});
   Eigen::MatrixXd A, B, C, D;
   for (auto _ : state) benchmark::DoNotOptimize(lin.jacobians(plant, A, B, C, D).ok);
   state.counters["columns"] = static_cast<double>(A.cols() + B.cols());
 }
-BENCHMARK(linearise_full)->Unit(benchmark::kMillisecond);
+BENCHMARK(linearise_full)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void linearise_directional(benchmark::State& state) {
   Plant plant(control_cable(), plant_options());
@@ -104,8 +111,8 @@ void ilqr_iteration(benchmark::State& state) {
   const scene::Scene scene = control_cable();
   Plant plant(scene, plant_options());
   drive(plant, 3);
-  const int H = 5;
-  PlantIlqrModel model(plant, H, 0.0, 1.0);
+  const int H = static_cast<int>(state.range(0));
+  PlantIlqrModel model(plant, H, 0.0, 1.0, method_of(state, 1));
   std::vector<Vector3> targets(H);
   for (int k = 0; k < H; ++k) targets[k] = scene::position(*scene.control->trajectory, 0.05 * (k + 1));
   IlqrOptions o;
@@ -116,8 +123,12 @@ void ilqr_iteration(benchmark::State& state) {
     model.reset();
     benchmark::DoNotOptimize(r.ok);
   }
+  state.counters["real_time_ratio"] = benchmark::Counter(
+      0.05, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(ilqr_iteration)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(ilqr_iteration)
+    ->Args({5, 0})->Args({10, 0})->Args({20, 0})->Args({5, 1})
+    ->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace
 

@@ -27,6 +27,10 @@ constexpr OptionSpec kControllerOption{
 constexpr OptionSpec kTaskOption{"--task", "reach|hold|track", "the task; default: control.task"};
 constexpr OptionSpec kHorizonOption{"--horizon", "H",
                                     "control steps predicted, integer >= 1; default: control.horizon"};
+constexpr OptionSpec kIterationsOption{
+    "--iterations", "K",
+    "solver iterations per control step (nlsq-mpc, ilqr), integer >= 1; 1: the real-time "
+    "iteration; default: control.iterations, else the controller's"};
 constexpr OptionSpec kDtControlOption{"--dt-control", "X",
                                       "control step [s] > 0; default: control.dt_control"};
 constexpr OptionSpec kSeedOption{"--seed", "K", "seed of drawn targets, integer >= 0; default: control.seed"};
@@ -41,6 +45,7 @@ scene::Control read_control(OptionReader& reader, const scene::Scene& scene) {
              : *task == "hold" ? scene::ControlTask::hold
                                : scene::ControlTask::track;
   if (const auto h = reader.integer(kHorizonOption.name, 1)) c.horizon = *h;
+  if (const auto k = reader.integer(kIterationsOption.name, 1)) c.iterations = *k;
   if (const auto dt = reader.positive(kDtControlOption.name)) c.dt_control = *dt;
   if (const auto seed = reader.integer(kSeedOption.name, 0)) c.seed = static_cast<unsigned>(*seed);
   if (const auto k = reader.integer(kTargetsOption.name, 1)) {
@@ -104,10 +109,10 @@ int run(const Invocation& inv) {
 }  // namespace
 
 const Command& control_command() {
-  static const std::array<OptionSpec, 13> options{
-      kControllerOption, kTaskOption, kHorizonOption, kDtControlOption, kSchemeOption,
-      kNodesOption,      kTolOption,  kGridOption,    kSeedOption,      kTargetsOption,
-      kOutFileOption,    kSetOption,  kMaxWallTimeOption};
+  static const std::array<OptionSpec, 14> options{
+      kControllerOption, kTaskOption,    kHorizonOption, kIterationsOption, kDtControlOption,
+      kSchemeOption,     kNodesOption,   kTolOption,     kGridOption,       kSeedOption,
+      kTargetsOption,    kOutFileOption, kSetOption,     kMaxWallTimeOption};
   static const Command command{
       "control",
       "SCENE [--controller NAME] [--task reach|hold|track] [options]",

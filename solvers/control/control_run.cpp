@@ -179,6 +179,7 @@ class MpcController final : public DynamicController {
     mo.input_rate_weight = c.weights.input_rate;
     mo.input_weight = c.weights.input;
     mo.terminal_weight = c.weights.terminal;
+    mo.max_iterations = c.iterations.value_or(mo.max_iterations);
     return mo;
   }
   NlsqMpc mpc_;
@@ -190,7 +191,7 @@ class IlqrController final : public DynamicController {
  public:
   IlqrController(Plant& plant, const scene::Control& c)
       : model_(plant, c.horizon, c.weights.input, c.weights.terminal), plan_(c.horizon) {
-    options_.max_iterations = kIterationsPerStep;
+    options_.max_iterations = c.iterations.value_or(kIterationsPerStep);
     options_.tolerance = 1e-6;
   }
   std::string start(const Plant& plant, const Vector3&) override {
@@ -211,6 +212,7 @@ class IlqrController final : public DynamicController {
   }
 
  private:
+  /// control.iterations' default: converged plans (1: the real-time iteration, docs/control.md)
   static constexpr int kIterationsPerStep = 10;
   PlantIlqrModel model_;
   std::vector<Eigen::VectorXd> plan_;

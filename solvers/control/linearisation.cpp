@@ -122,12 +122,21 @@ dynamics::StepStatus Linearisation::difference(Plant& plant,
 }
 
 dynamics::StepStatus Linearisation::jacobians(Plant& plant, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
-                                              Eigen::MatrixXd& C, Eigen::MatrixXd& D) {
+                                              Eigen::MatrixXd& C, Eigen::MatrixXd& D,
+                                              Vector3* tip_next) {
   if (options_.method == JacobianMethod::implicit_function && plant.has_step_linearisation()) {
     plant.save(start_);
     const dynamics::StepStatus status = plant.advance_linearised(A, B, C, D);
+    if (tip_next != nullptr) *tip_next = plant.tip();
     plant.restore(start_);
     return status;
+  }
+  if (tip_next != nullptr) {
+    plant.save(start_);
+    const dynamics::StepStatus status = plant.advance();
+    *tip_next = plant.tip();
+    plant.restore(start_);
+    if (!status.ok) return status;
   }
   const int n = plant.state_size(), m = plant.input_count();
   A.resize(n, n);

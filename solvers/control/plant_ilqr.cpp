@@ -11,10 +11,10 @@ constexpr double kStateRegularisation = 1e-8;
 }  // namespace
 
 PlantIlqrModel::PlantIlqrModel(Plant& plant, int horizon, double input_weight,
-                               double terminal_weight)
+                               double terminal_weight, JacobianMethod method)
     : plant_(plant), horizon_(horizon), input_weight_(input_weight),
       terminal_weight_(terminal_weight), initial_(plant.snapshot()), targets_(horizon),
-      lin_(plant) {
+      lin_(plant, LinearisationOptions{.method = method}) {
   RODLAB_THROW_UNLESS(horizon >= 1, "ilqr: horizon must be >= 1 (got {})", horizon);
   for (int k = 0; k < horizon; ++k) kept_.push_back(plant.snapshot());
   range_ = (plant.upper() - plant.lower()).cwiseMax(1e-300);
@@ -45,15 +45,13 @@ bool PlantIlqrModel::linearise(int k, const Eigen::VectorXd& u, Eigen::MatrixXd&
                                Eigen::MatrixXd& B, Eigen::VectorXd& l_x, Eigen::VectorXd& l_u,
                                Eigen::MatrixXd& l_xx, Eigen::MatrixXd& l_uu,
                                Eigen::MatrixXd& l_ux) {
-  // the nominal tip error after the step, then the step's Jacobians at the kept state
+  // the step's Jacobians at the kept state and the nominal tip error after it
   plant_.restore(kept_[k]);
   plant_.set_input(u);
-  if (!plant_.advance().ok) return false;
+  Vector3 tip;
+  if (!lin_.jacobians(plant_, A, B, C_, D_, &tip).ok) return false;
   const double L = plant_.length(), w = weight(k);
-  const Eigen::Vector3d e = (plant_.tip() - targets_[k]) / L;
-  plant_.restore(kept_[k]);
-  plant_.set_input(u);
-  if (!lin_.jacobians(plant_, A, B, C_, D_).ok) return false;
+  const Eigen::Vector3d e = (tip - targets_[k]) / L;
   const Eigen::VectorXd R = input_weight_ * range_.cwiseInverse().cwiseAbs2();
   l_x = (2.0 * w / L) * C_.transpose() * e;
   l_u = (2.0 * w / L) * D_.transpose() * e + 2.0 * R.cwiseProduct(u - plant_.lower());

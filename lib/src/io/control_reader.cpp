@@ -125,8 +125,8 @@ void check_actuator_limits(Checker& c, const Field& control, const Field& actuat
 scene::Control read_control(Checker& c, const Field& f, const Field& actuators,
                             const std::vector<scene::Actuator>& read) {
   scene::Control control;
-  if (!c.keys(f, {"task", "targets", "trajectory", "horizon", "dt_control", "threshold",
-                  "max_steps", "hold_steps", "weights", "seed", "target_count"}))
+  if (!c.keys(f, {"task", "targets", "trajectory", "horizon", "iterations", "dt_control",
+                  "threshold", "max_steps", "hold_steps", "weights", "seed", "target_count"}))
     return control;
   const auto given = c.exactly_one(f, {"targets", "trajectory"}, false);
   if (given == "targets") control.targets = read_targets(c, Checker::child(f, "targets"));
@@ -135,6 +135,7 @@ scene::Control read_control(Checker& c, const Field& f, const Field& actuators,
   read_task(c, f, control);
 
   if (auto h = c.integer(c.child(f, "horizon"), 1)) control.horizon = *h;
+  if (auto k = c.integer(c.child(f, "iterations"), 1)) control.iterations = *k;
   if (auto dt = c.number(c.child(f, "dt_control"), Range::positive())) control.dt_control = *dt;
   if (auto th = c.number(c.child(f, "threshold"), Range::positive())) control.threshold = *th;
   read_steps(c, f, control);

@@ -174,6 +174,10 @@ struct Control {
   std::vector<Vector3> targets;           ///< [m], world frame; empty: drawn from the workspace
   std::optional<Trajectory> trajectory;   ///< at most one of targets and trajectory
   int horizon = 10;                       ///< control steps predicted
+  /// Solver iterations per control step of a predictive controller (nlsq-mpc: Levenberg-
+  /// Marquardt iterations per plan; ilqr: iLQR iterations); empty: the controller's default.
+  /// 1 is the real-time iteration: one iteration per step, warm-started from the shifted plan.
+  std::optional<int> iterations;
   double dt_control = 0.05;               ///< [s] between control updates
   double threshold = 0.05;                ///< success: tip error below threshold * L
   int max_steps = 100;                    ///< control steps per reach or hold episode

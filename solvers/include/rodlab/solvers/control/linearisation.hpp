@@ -56,8 +56,11 @@ class Linearisation {
   /// A (n x n) and B (n x m) and the tip Jacobian C = d p_tip(x+) / d x and
   /// D = d p_tip(x+) / d u (3 x n, 3 x m): by options.method; finite differences column by
   /// column.
+  /// With `tip_next` also the tip after the unperturbed step (free with the implicit function
+  /// method, one more step with differences).
   dynamics::StepStatus jacobians(Plant& plant, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
-                                 Eigen::MatrixXd& C, Eigen::MatrixXd& D);
+                                 Eigen::MatrixXd& C, Eigen::MatrixXd& D,
+                                 Vector3* tip_next = nullptr);
 
  private:
   /// x+ and the tip after one control step from the saved state moved by h (dx, du).

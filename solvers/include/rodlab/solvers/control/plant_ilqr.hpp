@@ -7,9 +7,9 @@
 //           Gauss-Newton Hessian positive definite),
 //
 // w_k = 1 and w_H = w_terminal, in the plant's tangent coordinates; the Jacobians A, B of each
-// stage and the tip's C, D come from the linearisation (central differences, every column:
-// n + m directional derivatives per stage, which is what makes iLQR slow on the rod until a
-// tangent-linear step exists; docs/control.md "iLQR").
+// stage and the tip's C, D come from the linearisation: the scheme's linearised step where it
+// has one (implicit-midpoint, bdf-alpha: one step per stage), else central differences of every
+// column (2 (n + m) steps per stage; docs/control.md "iLQR").
 #include <span>
 #include <vector>
 
@@ -22,7 +22,8 @@ namespace rodlab::solvers::control {
 class PlantIlqrModel final : public IlqrModel {
  public:
   /// H stages on `plant` (kept by reference); weights as in MpcOptions.
-  PlantIlqrModel(Plant& plant, int horizon, double input_weight, double terminal_weight);
+  PlantIlqrModel(Plant& plant, int horizon, double input_weight, double terminal_weight,
+                 JacobianMethod method = JacobianMethod::implicit_function);
 
   /// The next solve starts from the plant's current state towards targets p*_1..p*_H.
   void start(std::span<const Vector3> targets);
