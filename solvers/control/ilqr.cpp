@@ -91,8 +91,8 @@ IlqrResult solve_ilqr(IlqrModel& model, std::vector<Eigen::VectorXd> u, const Il
     v = v.cwiseMax(model.lower()).cwiseMin(model.upper());
   }
   IlqrResult out;
-  std::vector<Eigen::VectorXd> x(H, Eigen::VectorXd(n)), kff(H, Eigen::VectorXd::Zero(m)),
-      trial(H);
+  std::vector<Eigen::VectorXd> x(H, Eigen::VectorXd(n)), x_trial(H, Eigen::VectorXd(n)),
+      kff(H, Eigen::VectorXd::Zero(m)), trial(H);
   std::vector<Eigen::MatrixXd> K(H);
   std::vector<Stage> stages(H);
   double J = 0.0;
@@ -103,7 +103,6 @@ IlqrResult solve_ilqr(IlqrModel& model, std::vector<Eigen::VectorXd> u, const Il
   out.costs.push_back(J);
   double mu = o.initial_mu;
   bool linearised = false;
-  Eigen::VectorXd xk(n);
   for (out.iterations = 0; out.iterations < o.max_iterations; ++out.iterations) {
     for (int k = 0; k < H && !linearised; ++k) {
       Stage& s = stages[k];
@@ -128,8 +127,9 @@ IlqrResult solve_ilqr(IlqrModel& model, std::vector<Eigen::VectorXd> u, const Il
       J_new = 0.0;
       bool ran = true;
       for (int k = 0; k < H && ran; ++k) {
-        model.state(xk);
-        trial[k] = (u[k] + alpha * kff[k] + K[k] * (xk - x[k]))
+        model.state(x_trial[k]);
+        model.keep_trial(k);
+        trial[k] = (u[k] + alpha * kff[k] + K[k] * (x_trial[k] - x[k]))
                        .cwiseMax(model.lower())
                        .cwiseMin(model.upper());
         ran = model.step(k, trial[k], J_new);
@@ -145,7 +145,10 @@ IlqrResult solve_ilqr(IlqrModel& model, std::vector<Eigen::VectorXd> u, const Il
     }
     u = trial;
     const double J_old = J;
-    if (!nominal(model, u, x, J)) {
+    if (model.accept_trial()) {
+      x.swap(x_trial);
+      J = J_new;
+    } else if (!nominal(model, u, x, J)) {
       out.reason = "ilqr: the rollout of the accepted inputs failed";
       return out;
     }

@@ -16,7 +16,10 @@ PlantIlqrModel::PlantIlqrModel(Plant& plant, int horizon, double input_weight,
       terminal_weight_(terminal_weight), initial_(plant.snapshot()), targets_(horizon),
       lin_(plant, LinearisationOptions{.method = method}) {
   RODLAB_THROW_UNLESS(horizon >= 1, "ilqr: horizon must be >= 1 (got {})", horizon);
-  for (int k = 0; k < horizon; ++k) kept_.push_back(plant.snapshot());
+  for (int k = 0; k < horizon; ++k) {
+    kept_.push_back(plant.snapshot());
+    kept_trial_.push_back(plant.snapshot());
+  }
   range_ = (plant.upper() - plant.lower()).cwiseMax(1e-300);
 }
 

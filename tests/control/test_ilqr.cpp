@@ -2,15 +2,17 @@
 // the finite-horizon LQR optimum (lqr.hpp) in one accepted iteration; on a damped pendulum
 // (nonlinear) its true cost falls monotonically and its solution satisfies the first-order
 // optimality (KKT) conditions of the bounded problem, checked by central differences of the
-// total cost.
+// total cost; on the rod an accepted trial rollout serves as the next nominal one.
 #define BOOST_TEST_MODULE control_ilqr
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
 #include <vector>
 
+#include "control_support.hpp"
 #include "rodlab/solvers/control/ilqr.hpp"
 #include "rodlab/solvers/control/lqr.hpp"
+#include "rodlab/solvers/control/plant_ilqr.hpp"
 
 namespace c = rodlab::solvers::control;
 using Eigen::MatrixXd;
@@ -194,4 +196,54 @@ BOOST_AUTO_TEST_CASE(pendulum_cost_falls_and_the_solution_is_stationary) {
       if (bound < 10) BOOST_TEST(clamped > 0);  // the bound was active
     }
   }
+}
+
+namespace {
+
+/// The rod's model without trial states: solve_ilqr runs every accepted trial's rollout again.
+class Rerunning final : public c::IlqrModel {
+ public:
+  explicit Rerunning(c::PlantIlqrModel& m) : m_(m) {}
+  int state_size() const override { return m_.state_size(); }
+  int input_size() const override { return m_.input_size(); }
+  const VectorXd& lower() const override { return m_.lower(); }
+  const VectorXd& upper() const override { return m_.upper(); }
+  void reset() override { m_.reset(); }
+  void state(VectorXd& x) const override { m_.state(x); }
+  bool step(int k, const VectorXd& u, double& cost) override { return m_.step(k, u, cost); }
+  void keep(int k) override { m_.keep(k); }
+  bool linearise(int k, const VectorXd& u, MatrixXd& A, MatrixXd& B, VectorXd& l_x, VectorXd& l_u,
+                 MatrixXd& l_xx, MatrixXd& l_uu, MatrixXd& l_ux) override {
+    return m_.linearise(k, u, A, B, l_x, l_u, l_xx, l_uu, l_ux);
+  }
+
+ private:
+  c::PlantIlqrModel& m_;
+};
+
+}  // namespace
+
+// On the rod (PlantIlqrModel, N = 6, H = 3, dt_c = 0.05 s, towards a point 5 mm off the axis):
+// an accepted trial rollout becomes the nominal one (accept_trial) instead of being run again;
+// the iterations must then be those of the model that runs it again, bit for bit.
+BOOST_AUTO_TEST_CASE(rod_accepted_trial_is_the_nominal_rollout) {
+  c::Plant plant(rodlab::testing::control::cable_robot(),
+                 rodlab::testing::control::plant_options("implicit-midpoint", 6, 0.05));
+  const int H = 3;
+  c::PlantIlqrModel model(plant, H, 0.0, 1.0);
+  const std::vector<Eigen::Vector3d> targets(H, Eigen::Vector3d(0.005, 0.0, 0.0998));
+  c::IlqrOptions o;
+  o.max_iterations = 3;
+  const std::vector<VectorXd> u0(H, plant.input());
+  model.start(targets);
+  const c::IlqrResult kept = c::solve_ilqr(model, u0, o);
+  model.reset();
+  Rerunning rerunning(model);
+  const c::IlqrResult rerun = c::solve_ilqr(rerunning, u0, o);
+  BOOST_REQUIRE(kept.ok);
+  BOOST_REQUIRE(rerun.ok);
+  BOOST_TEST(kept.iterations == rerun.iterations);
+  BOOST_TEST(kept.costs == rerun.costs);
+  for (int k = 0; k < H; ++k) BOOST_TEST((kept.u[k] - rerun.u[k]).norm() == 0.0);
+  BOOST_TEST(kept.costs.back() < 0.5 * kept.costs.front());  // it did move towards the target
 }

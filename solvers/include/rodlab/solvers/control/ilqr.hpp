@@ -40,6 +40,12 @@ class IlqrModel {
   virtual bool step(int k, const Eigen::VectorXd& u, double& cost) = 0;
   /// Keeps the current state as the nominal state of stage k (before its step).
   virtual void keep(int k) = 0;
+  /// Keeps the current state as stage k's of the line search's trial rollout.
+  virtual void keep_trial(int /*k*/) {}
+  /// Makes the kept trial states the nominal ones (the trial was accepted, so its rollout is the
+  /// new nominal one); false when the model keeps no trial states (solve_ilqr then runs the
+  /// nominal rollout again).
+  virtual bool accept_trial() { return false; }
   /// At the kept state of stage k with input u: the step's Jacobians A, B and the stage cost's
   /// gradient and (Gauss-Newton) Hessian. False: a step failed.
   virtual bool linearise(int k, const Eigen::VectorXd& u, Eigen::MatrixXd& A, Eigen::MatrixXd& B,

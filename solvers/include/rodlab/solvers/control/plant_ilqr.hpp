@@ -36,6 +36,11 @@ class PlantIlqrModel final : public IlqrModel {
   void state(Eigen::VectorXd& x) const override;
   bool step(int k, const Eigen::VectorXd& u, double& cost) override;
   void keep(int k) override { plant_.save(kept_[k]); }
+  void keep_trial(int k) override { plant_.save(kept_trial_[k]); }
+  bool accept_trial() override {
+    kept_.swap(kept_trial_);  // the snapshots change hands: no copy, no allocation
+    return true;
+  }
   bool linearise(int k, const Eigen::VectorXd& u, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
                  Eigen::VectorXd& l_x, Eigen::VectorXd& l_u, Eigen::MatrixXd& l_xx,
                  Eigen::MatrixXd& l_uu, Eigen::MatrixXd& l_ux) override;
@@ -47,7 +52,7 @@ class PlantIlqrModel final : public IlqrModel {
   int horizon_;
   double input_weight_, terminal_weight_;
   PlantSnapshot initial_;
-  std::vector<PlantSnapshot> kept_;
+  std::vector<PlantSnapshot> kept_, kept_trial_;
   std::vector<Vector3> targets_;
   Linearisation lin_;
   Eigen::VectorXd range_;
