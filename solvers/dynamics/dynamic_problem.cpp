@@ -213,8 +213,7 @@ Vector6 DynamicProblem::solve_strain(const lie::Matrix6& Kt, const Vector6& xi_r
                               const auto& path = actuators_[k].path;
                               // a slack cable adds exactly nothing (a controller's are often 0)
                               if (F[k] == 0.0 || !path.active(s)) continue;
-                              r += F[k] * path.unit_wrench(s, xi);
-                              J += F[k] * path.unit_wrench_jacobian(s, xi);
+                              path.add_wrench(s, xi, F[k], r, J);
                             }
                           },
                           guess);

@@ -57,20 +57,28 @@ Vector6 TendonPath::unit_wrench(double s, const Vector6& xi) const {
 }
 
 Eigen::Matrix<double, 6, 6> TendonPath::unit_wrench_jacobian(double s, const Vector6& xi) const {
+  Vector6 w = Vector6::Zero();
+  Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Zero();
+  add_wrench(s, xi, 1.0, w, J);
+  return J;
+}
+
+void TendonPath::add_wrench(double s, const Vector6& xi, double F, Vector6& w,
+                            Eigen::Matrix<double, 6, 6>& J) const {
   const Vector3 r = offset(s);
-  const Vector3 u = tangent_vector(s, xi);
+  const Vector3 u = xi.tail<3>() + xi.head<3>().cross(r) + offset_rate(s);
   const double n = u.norm();
   const Vector3 t = u / n;
-  const lie::Matrix3 P = (lie::Matrix3::Identity() - t * t.transpose()) / n;  // dt/du
+  w.head<3>() += F * r.cross(t);
+  w.tail<3>() += F * t;
+  // dt/dxi = P [-hat(r), I] with P = (I - t t^T) / |u|, and c's top rows are hat(r) t
+  const lie::Matrix3 P = (F / n) * (lie::Matrix3::Identity() - t * t.transpose());
   const lie::Matrix3 rh = lie::so3::hat(r);
-  Matrix36 du;  // du/dxi = [-hat(r), I]
-  du.leftCols<3>() = -rh;
-  du.rightCols<3>() = lie::Matrix3::Identity();
-  const Matrix36 dt = P * du;
-  Eigen::Matrix<double, 6, 6> J;
-  J.topRows<3>() = rh * dt;
-  J.bottomRows<3>() = dt;
-  return J;
+  const lie::Matrix3 P_rh = P * rh;
+  J.topLeftCorner<3, 3>() -= rh * P_rh;
+  J.topRightCorner<3, 3>() += rh * P;
+  J.bottomLeftCorner<3, 3>() -= P_rh;
+  J.bottomRightCorner<3, 3>() += P;
 }
 
 }  // namespace rodlab::loads

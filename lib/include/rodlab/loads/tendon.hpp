@@ -45,6 +45,10 @@ class TendonPath {
   Vector6 unit_wrench(double s, const Vector6& xi) const;
   /// dc/dxi = [hat(r); I] (I - t t^T)/|u| [-hat(r), I].
   Eigen::Matrix<double, 6, 6> unit_wrench_jacobian(double s, const Vector6& xi) const;
+  /// w += F c(xi) and J += F dc/dxi in one evaluation of r, u and t (the Newton iteration of
+  /// the constitutive law with tendons, solvers/common/tendon_law.hpp).
+  void add_wrench(double s, const Vector6& xi, double F, Vector6& w,
+                  Eigen::Matrix<double, 6, 6>& J) const;
   /// |p_a'| = |u|: the rate of the path's current length (2.47), (2.66).
   double length_rate(double s, const Vector6& xi) const { return tangent_vector(s, xi).norm(); }
 
