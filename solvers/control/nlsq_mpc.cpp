@@ -90,6 +90,53 @@ bool NlsqMpc::jacobian(Plant& plant, Eigen::MatrixXd& J, std::string& reason) {
   const int H = options_.horizon, m = plant.input_count(), n_u = H * m;
   const bool effort = options_.input_weight > 0.0;
   J.setZero(3 * H + n_u + (effort ? n_u : 0), n_u);
+  const bool linearised =
+      options_.jacobian == JacobianMethod::implicit_function && plant.has_step_linearisation();
+  if (!(linearised ? linearised_tracking_rows(plant, J, reason)
+                   : differenced_tracking_rows(plant, J, reason)))
+    return false;
+  const double rate = std::sqrt(options_.input_rate_weight);
+  const double w = std::sqrt(options_.input_weight);
+  for (int k = 0; k < H; ++k)
+    for (int i = 0; i < m; ++i) {
+      const int row = k * m + i;
+      J(3 * H + row, row) = rate / range_[i];
+      if (k > 0) J(3 * H + row, row - m) = -rate / range_[i];
+      if (effort) J(3 * H + n_u + row, row) = w / range_[i];
+    }
+  return true;
+}
+
+// d p_(k+1) / d u_j = D_k (k = j), C_k A_(k-1) ... A_(j+1) B_j (k > j): each step linearised once
+// along the rollout (H steps), then chained.
+bool NlsqMpc::linearised_tracking_rows(Plant& plant, Eigen::MatrixXd& J, std::string& reason) {
+  const int H = options_.horizon, m = plant.input_count();
+  const double L = plant.length();
+  if (static_cast<int>(A_.size()) != H) A_.resize(H), B_.resize(H), C_.resize(H), D_.resize(H);
+  for (int k = 0; k < H; ++k) {
+    plant.restore(states_[k]);  // x_k under u_k (the rollout)
+    const auto status = plant.advance_linearised(A_[k], B_[k], C_[k], D_[k]);
+    if (!status.ok) {
+      reason = status.reason;
+      return false;
+    }
+  }
+  for (int j = 0; j < H; ++j) {
+    J.block(3 * j, j * m, 3, m) = (weight(j) / L) * D_[j];
+    Phi_ = B_[j];
+    for (int k = j + 1; k < H; ++k) {
+      J.block(3 * k, j * m, 3, m).noalias() = (weight(k) / L) * C_[k] * Phi_;
+      if (k + 1 < H) {
+        Phi_next_.noalias() = A_[k] * Phi_;
+        Phi_.swap(Phi_next_);
+      }
+    }
+  }
+  return true;
+}
+
+bool NlsqMpc::differenced_tracking_rows(Plant& plant, Eigen::MatrixXd& J, std::string& reason) {
+  const int H = options_.horizon, m = plant.input_count();
   const double L = plant.length();  // the tracking residuals are (p_k - p_des,k) / L
   for (int j = 0; j < H; ++j)
     for (int i = 0; i < m; ++i) {
@@ -109,15 +156,6 @@ bool NlsqMpc::jacobian(Plant& plant, Eigen::MatrixXd& J, std::string& reason) {
         J.block<3, 1>(3 * k, col) = weight(k) * d_.dtip / (range_[i] * L);
         dx_ = d_.dx;
       }
-    }
-  const double rate = std::sqrt(options_.input_rate_weight);
-  const double w = std::sqrt(options_.input_weight);
-  for (int k = 0; k < H; ++k)
-    for (int i = 0; i < m; ++i) {
-      const int row = k * m + i;
-      J(3 * H + row, row) = rate / range_[i];
-      if (k > 0) J(3 * H + row, row - m) = -rate / range_[i];
-      if (effort) J(3 * H + n_u + row, row) = w / range_[i];
     }
   return true;
 }

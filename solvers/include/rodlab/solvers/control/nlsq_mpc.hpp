@@ -44,6 +44,10 @@ struct MpcOptions {
   /// updates and replaced by an exact one after a poorly predicted or failed step; false: an
   /// exact Jacobian at every plan's start.
   bool reuse_jacobian = true;
+  /// How the exact Jacobian is built: implicit_function chains each step's own linearisation
+  /// (A_k, B_k, C_k, D_k; Plant::advance_linearised) where the scheme has one; finite_difference
+  /// propagates directional derivatives of whole steps along the rollout.
+  JacobianMethod jacobian = JacobianMethod::implicit_function;
 };
 
 /// One plan.
@@ -91,6 +95,10 @@ class NlsqMpc {
   /// The residuals' Jacobian along the last rollout: d p_k / d U from the linearisation, the
   /// rate and effort rows in closed form.
   bool jacobian(Plant& plant, Eigen::MatrixXd& J, std::string& reason);
+  /// Its tracking rows by finite differences (directional derivatives along the rollout) or
+  /// from the steps' own linearisations.
+  bool differenced_tracking_rows(Plant& plant, Eigen::MatrixXd& J, std::string& reason);
+  bool linearised_tracking_rows(Plant& plant, Eigen::MatrixXd& J, std::string& reason);
 
   MpcOptions options_;
   Linearisation lin_;
@@ -98,6 +106,8 @@ class NlsqMpc {
   std::vector<PlantSnapshot> states_;  ///< x_0..x_H of the last rollout
   bool rolled_out_ = false;  ///< states_ hold a whole rollout of this plan (warm starts)
   std::vector<Eigen::VectorXd> xs_;    ///< x_1..x_H of the last rollout (tangent coordinates)
+  std::vector<Eigen::MatrixXd> A_, B_, C_, D_;  ///< the rollout's step linearisations
+  Eigen::MatrixXd Phi_, Phi_next_;             ///< d x_(k+1) / d u_j while chaining them
   std::vector<Vector3> tips_;          ///< p_1..p_H of the last rollout
   Eigen::MatrixXd plan_;               ///< H x m
   Eigen::VectorXd U_, U_trial_, U_old_, r_, r_trial_, r_old_, z_lower_, z_upper_;
