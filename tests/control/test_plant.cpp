@@ -238,3 +238,40 @@ BOOST_AUTO_TEST_CASE(collocation_agrees_with_implicit_midpoint_to_second_order) 
     }
   }
 }
+
+// warm_start_from (finite differences of a step, linearisation.hpp): collocation's step from a
+// state 1e-5 state_scale away starts from the solution of the unperturbed step, and converges
+// in fewer KINSOL iterations to the same step (to the solver's tolerance). Measured at N = 10,
+// dt = 10 ms: 11 -> 2 iterations (Cosserat), 10 -> 6 (Kirchhoff); the two perturbed steps'
+// states differ by 4e-15 and 4e-13 of the state's norm (1e-10, the solver's tolerance, accepted).
+BOOST_AUTO_TEST_CASE(collocation_warm_start_takes_fewer_iterations) {
+  for (const Case& k : {kCases[5], kCases[6]}) {
+    BOOST_TEST_CONTEXT(k.model) {
+      c::Plant plant = make(k);
+      plant.set_input(input(0.3, 0.1, 0.0, 0.05));
+      for (int i = 0; i < 3; ++i) BOOST_REQUIRE(plant.advance().ok);
+      const c::PlantSnapshot start = plant.snapshot();
+      BOOST_REQUIRE(plant.advance().ok);
+      const c::PlantSnapshot after = plant.snapshot();
+      Eigen::VectorXd dx(plant.state_size());
+      for (int i = 0; i < dx.size(); ++i)
+        dx[i] = 1e-5 * plant.state_scale()[i] * std::sin(1.0 + i);
+      std::vector<int> iterations;
+      std::vector<Eigen::VectorXd> ends;
+      for (bool warm : {false, true}) {
+        plant.restore(start);
+        plant.add_state(std::span<const double>(dx.data(), dx.size()));
+        if (warm) plant.warm_start_from(after);
+        const auto status = plant.advance();
+        BOOST_TEST_REQUIRE(status.ok, status.reason);
+        iterations.push_back(status.iterations);
+        ends.push_back(state(plant));
+      }
+      const double gap = (ends[1] - ends[0]).norm() / ends[0].norm();
+      BOOST_TEST_MESSAGE(k.model << ": iterations " << iterations[0] << " cold, "
+                                 << iterations[1] << " warm; relative difference " << gap);
+      BOOST_TEST(iterations[1] < iterations[0]);
+      BOOST_TEST(gap < 1e-10);
+    }
+  }
+}
