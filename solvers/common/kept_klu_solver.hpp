@@ -28,4 +28,12 @@ struct KeptKluCounts {
 };
 KeptKluCounts kept_klu_counts(SUNLinearSolver S);
 
+/// Makes dst's kept state (analysis, factors, the values factorised last, counts) a copy of
+/// src's, both kept KLU solvers of the same size, so that dst's next setups and solves repeat
+/// src's bit for bit (a control snapshot of a time stepper: stepper.hpp). The copy reuses dst's
+/// arrays wherever they can hold src's (the analysis of the same pattern is the same; the factors
+/// fit unless src has since factorised afresh with a larger fill-in); only otherwise it
+/// allocates. Throws std::invalid_argument for solvers of different sizes.
+void assign_kept_klu(SUNLinearSolver dst, SUNLinearSolver src);
+
 }  // namespace rodlab::solvers::sundials

@@ -1,5 +1,6 @@
 #include "rodlab/solvers/common/kinsol_solver.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <exception>
 #include <string>
@@ -76,7 +77,23 @@ void check_kinls(int flag, const char* call) {
 }  // namespace
 
 struct KinsolSolver::Impl {
-  explicit Impl(const SparseMatrix& pattern) : pattern(pattern, "KinsolSolver") {}
+  Impl(const sundials::JacobianPattern& pattern, bool keep) : pattern(pattern) { create(keep); }
+
+  /// The SUNDIALS objects for a system of the pattern's size.
+  void create(bool keep) {
+    const int n = pattern.size();
+    context = sundials::make_context("KINSOL");
+    SUNContext ctx = context.get();
+    u = sundials::make_vector(n, ctx, "KINSOL");
+    u_scale = sundials::make_vector(n, ctx, "KINSOL");
+    f_scale = sundials::make_vector(n, ctx, "KINSOL");
+    A = pattern.make_matrix(ctx);
+    keep_factorisation = keep;
+    linear_solver.reset(keep ? sundials::check_created(sundials::make_kept_klu_solver(n, ctx),
+                                                       "KINSOL", "make_kept_klu_solver")
+                             : sundials::check_created(SUNLinSol_KLU(u.get(), A.get(), ctx),
+                                                       "KINSOL", "SUNLinSol_KLU"));
+  }
 
   // Declaration order is destruction order reversed: the context outlives everything.
   sundials::ContextPtr context;
@@ -127,22 +144,30 @@ struct KinsolSolver::Impl {
 };
 
 KinsolSolver::KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation)
-    : impl_(std::make_unique<Impl>(pattern)) {
+    : impl_(std::make_unique<Impl>(sundials::JacobianPattern(pattern, "KinsolSolver"),
+                                   keep_factorisation)) {}
+
+KinsolSolver::KinsolSolver(const KinsolSolver& other)
+    : impl_(std::make_unique<Impl>(other.impl_->pattern, other.impl_->keep_factorisation)) {
+  assign(other);
+}
+
+void KinsolSolver::assign(const KinsolSolver& other) {
   Impl& d = *impl_;
-  const int n = d.pattern.size();
-  d.context = sundials::make_context("KINSOL");
-  SUNContext ctx = d.context.get();
-  d.u = sundials::make_vector(n, ctx, "KINSOL");
-  d.u_scale = sundials::make_vector(n, ctx, "KINSOL");
-  d.f_scale = sundials::make_vector(n, ctx, "KINSOL");
-  d.A = d.pattern.make_matrix(ctx);
-  d.keep_factorisation = keep_factorisation;
-  d.linear_solver.reset(
-      keep_factorisation
-          ? sundials::check_created(sundials::make_kept_klu_solver(n, ctx), "KINSOL",
-                                    "make_kept_klu_solver")
-          : sundials::check_created(SUNLinSol_KLU(d.u.get(), d.A.get(), ctx), "KINSOL",
-                                    "SUNLinSol_KLU"));
+  const Impl& o = *other.impl_;
+  if (&d == &o) return;
+  const sunindextype nnz = SUNSparseMatrix_NNZ(d.A.get());
+  if (d.pattern.size() != o.pattern.size() || nnz != SUNSparseMatrix_NNZ(o.A.get()) ||
+      d.keep_factorisation != o.keep_factorisation)
+    throw std::invalid_argument(
+        "KinsolSolver::assign: from a solver of another size or factorisation mode");
+  N_VScale(1.0, o.u.get(), d.u.get());
+  N_VScale(1.0, o.u_scale.get(), d.u_scale.get());
+  N_VScale(1.0, o.f_scale.get(), d.f_scale.get());
+  const double* values = SUNSparseMatrix_Data(o.A.get());
+  std::copy(values, values + nnz, SUNSparseMatrix_Data(d.A.get()));
+  // SUNLinSol_KLU analyses and factorises afresh at the start of every solve: nothing is kept.
+  if (d.keep_factorisation) sundials::assign_kept_klu(d.linear_solver.get(), o.linear_solver.get());
 }
 
 KinsolSolver::~KinsolSolver() = default;

@@ -171,6 +171,38 @@ BOOST_AUTO_TEST_CASE(modified_newton_reuses_the_jacobian) {
   BOOST_TEST(stats.jacobian_evaluations < stats.nonlinear_iterations);
 }
 
+// A copy and an assigned solver (control snapshots of a time stepper, stepper.hpp) hold the
+// kept KLU factors of the original: a solve that starts from them (reuse_factorisation) repeats
+// the original's bit for bit, where a solver with other kept factors ends elsewhere in the last
+// bits. Assigning from another size is refused.
+BOOST_AUTO_TEST_CASE(copy_and_assign_repeat_the_kept_factors) {
+  const BroydenTridiagonal p{50};
+  KinsolOptions options;
+  options.max_setup_calls = 10;  // modified Newton: the kept factors serve several iterations
+  options.fnormtol = 1e-11;
+  auto solve_from = [&](KinsolSolver& solver, double start, bool reuse) {
+    Vector x = Vector::Constant(p.n, start);
+    KinsolOptions o = options;
+    o.reuse_factorisation = reuse;
+    const KinsolStats stats = solver.solve(x, residual_of(p), jacobian_of(p), o);
+    BOOST_TEST_REQUIRE(stats.converged);
+    return x;
+  };
+  KinsolSolver original(p.pattern(), /*keep_factorisation=*/true);
+  solve_from(original, -1.0, false);
+  KinsolSolver copy(original);
+  KinsolSolver assigned(p.pattern(), true), other(p.pattern(), true);
+  solve_from(assigned, -0.5, false);  // other factors, then replaced by the original's
+  assigned.assign(original);
+  solve_from(other, -0.5, false);
+  const Vector reference = solve_from(original, -0.9, true);
+  BOOST_TEST((solve_from(copy, -0.9, true) - reference).norm() == 0.0);
+  BOOST_TEST((solve_from(assigned, -0.9, true) - reference).norm() == 0.0);
+  BOOST_TEST((solve_from(other, -0.9, true) - reference).norm() > 0.0);  // the factors matter
+  KinsolSolver smaller(BroydenTridiagonal{10}.pattern(), true);
+  BOOST_CHECK_THROW(smaller.assign(original), std::invalid_argument);
+}
+
 BOOST_AUTO_TEST_CASE(exception_in_the_residual_is_rethrown_after_kinsol_returns) {
   const Rosenbrock p{4};
   KinsolSolver solver(p.pattern());

@@ -11,6 +11,7 @@
 #include "rodlab/solvers/common/kinsol_solver.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
+#include "../tangent_state.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {
@@ -35,7 +36,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
                               std::span<const SE3> g0)
       : rod_(problem, options.nodes, "implicit-midpoint-collocation", true),
         kinsol_(constrained() ? rod_.constrained_pattern() : rod_.pattern(false),
-                /*keep_factorisation=*/true) {
+                /*keep_factorisation=*/true),
+        tangent_(options.nodes, problem.model().xi_star(), problem.is_kirchhoff()) {
     if (!(options.tol > 0.0))
       throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");
     RODLAB_THROW_UNLESS(options.max_iterations >= 1 && options.max_setup_calls >= 1 &&
@@ -72,57 +74,16 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     for (int e = 0; e < m_; ++e) ko_.u_scale[n_ + nc_ + e] = 1.0 / rod_.unknown_scale(e);
     cached_ = Vector::Zero(
         (constrained() ? rod_.constrained_pattern() : rod_.pattern(false)).nonZeros());
-
-    // Unknowns u = [z; f]: the half-step increment of the node rows and, for Kirchhoff rods,
-    // the step's mean constraint forces (3 per segment, N). Rows: the midpoint rule on the node
-    // rows with f in the stresses, then the constraint at the end of the step, c(y0 + 2 z) = 0
-    // (the midpoint analogue of SHAKE).
-    // Actuator unknowns x (muscle lengths at the midpoint, length-controlled forces) follow,
-    // with their rows: (Delta - L(y_m)) / L, and (L(y_1) - L_target(t + dt)) / L at the end of
-    // the step.
-    residual_ = [this](const ConstRef& u, Eigen::Ref<Vector> F) {
-      ym_ = y_.head(n_) + u.head(n_);
-      if (!constrained()) {
-        rod_.rhs(h_, ym_, F);
-        F = a_ * u - F;
-        return;
-      }
-      rod_.rhs(h_, ym_, u.segment(n_, nc_), u.tail(m_), F.head(n_));
-      F.head(n_) = a_ * u.head(n_) - F.head(n_);
-      y1_ = y_.head(n_) + 2.0 * u.head(n_);
-      if (nc_ > 0) rod_.constraint(y1_, F.segment(n_, nc_));
-      if (m_ > 0) rod_.actuator_rows(t_end_, y1_, u.tail(m_), F.tail(m_));
-    };
-    jacobian_ = [this](const ConstRef& z, const ConstRef&, KinsolSolver::SparseMatrix& J) {
-      const bool reuse = jacobian_calls_ == 0 && cache_valid_;
-      ++jacobian_calls_;
-      if (reuse) {
-        // dF/dz = a I - df/dy: the stored one with the diagonal moved to this step's a (and
-        // stored so: the cache is always the matrix factorised last).
-        std::copy(cached_.data(), cached_.data() + cached_.size(), J.valuePtr());
-        if (a_ != cached_a_) {
-          for (int i = 0; i < n_; ++i) J.coeffRef(i, i) += a_ - cached_a_;
-          std::copy(J.valuePtr(), J.valuePtr() + cached_.size(), cached_.data());
-          cached_a_ = a_;
-        }
-        return;
-      }
-      ym_ = y_.head(n_) + z.head(n_);
-      if (!constrained()) {
-        rod_.newton_matrix(h_, ym_, a_, 1.0, J);
-      } else {
-        y1_ = y_.head(n_) + 2.0 * z.head(n_);
-        rod_.constrained_newton_matrix(h_, ym_, z.segment(n_, nc_), z.tail(m_), a_, 1.0, y1_,
-                                       2.0, J);
-      }
-      std::copy(J.valuePtr(), J.valuePtr() + cached_.size(), cached_.data());
-      cached_a_ = a_;
-      cache_valid_ = true;
-      age_ = 0;
-      ++fresh_jacobians_;
-    };
+    warm_ = Vector::Zero(n_ + nc_ + m_);
+    g_move_.assign(options.nodes, SE3::identity());
+    xi_move_.assign(options.nodes - 1, Vector6::Zero());
+    eta_move_.assign(options.nodes, Vector6::Zero());
     rod_.set_state(y_);
   }
+
+  /// A deep copy (control snapshots): the rod, and KINSOL's vectors and kept KLU factors
+  /// (KinsolSolver's copy constructor); the callbacks are bound to `this` in every solve().
+  ImplicitMidpointCollocation(const ImplicitMidpointCollocation&) = default;
 
   /// One step of the user's dt. A step that KINSOL cannot solve (the midpoint rule's nonlinear
   /// system at steps far above the first bending period, e.g. 0.1 s on the viscous cantilever) is
@@ -177,6 +138,13 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     if (history_ >= 2) consider((0.5 * dt) * (k1_ + ((dt + dt1_) / (dt1_ + dt2_)) * (k1_ - k2_)));
     if (history_ >= 1) consider((0.5 * dt) * k1_);
     consider((0.5 * dt) * f_.head(n_));
+    // warm_start_from: the solution of a clone's same step from a nearby state (a difference
+    // step, docs/control.md), for this step of the user's dt only (not its halves).
+    if (warm_pending_) {
+      warm_pending_ = false;
+      const double r = residual_norm(warm_);
+      if (r < best) best = r, z0_ = warm_;
+    }
     z_ = z0_;
     ko_.u_scale.head(n_) = w_.cwiseInverse() * a_;
     ko_.u_scale.segment(n_, nc_).setConstant(1.0 / rod_.force_scale());
@@ -257,6 +225,75 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     return out;
   }
 
+  // --- control (stepper.hpp; docs/control.md "The state") ------------------------------------
+
+  std::unique_ptr<Stepper> clone() const override {
+    return std::make_unique<ImplicitMidpointCollocation>(*this);
+  }
+
+  // Every member a step changes, scratch included (tests/control/test_plant.cpp checks that a
+  // rollout from a restored state repeats bit for bit): the state y_, the predictor's history
+  // and candidates, the Jacobian kept across steps with KINSOL's vectors and KLU's kept factors
+  // (KinsolSolver::assign: a step may start from them), the options a step adjusts. Fixed at
+  // construction: sizes, scalings (fs_, w_), limits. The rod's work arrays are outputs of every
+  // evaluation of f (written before they are read); they are set to y_ for the reports.
+  void assign_state(const Stepper& other) override {
+    const auto& o = dynamic_cast<const ImplicitMidpointCollocation&>(other);
+    RODLAB_THROW_UNLESS(&o.rod_.problem() == &rod_.problem() && o.rod_.nodes() == rod_.nodes(),
+                        "implicit-midpoint-collocation: assign_state from another problem or grid");
+    kinsol_.assign(o.kinsol_);
+    ko_ = o.ko_;
+    x_ = o.x_, forces_used_ = o.forces_used_, t_end_ = o.t_end_;
+    y_ = o.y_, y1_ = o.y1_, forces_ = o.forces_;
+    ym_ = o.ym_, z_ = o.z_, z0_ = o.z0_, f_ = o.f_, trial_ = o.trial_, F_ = o.F_;
+    h_ = o.h_, a_ = o.a_, t_ = o.t_, dt1_ = o.dt1_, dt2_ = o.dt2_;
+    history_ = o.history_;
+    k1_ = o.k1_, k2_ = o.k2_;
+    cached_ = o.cached_, cached_a_ = o.cached_a_, cache_valid_ = o.cache_valid_;
+    age_ = o.age_, jacobian_calls_ = o.jacobian_calls_, fresh_jacobians_ = o.fresh_jacobians_;
+    warm_ = o.warm_, warm_pending_ = o.warm_pending_;
+    g_move_ = o.g_move_, xi_move_ = o.xi_move_, eta_move_ = o.eta_move_;
+    rod_.set_state(y_);
+  }
+
+  // The next step starts from the half-step increment (and constraint forces, actuator
+  // unknowns) that `after` converged to, if its residual here is the smallest of the
+  // predictor's candidates (it is, for a nearby state).
+  void warm_start_from(const Stepper& after) override {
+    const auto& o = dynamic_cast<const ImplicitMidpointCollocation&>(after);
+    RODLAB_THROW_UNLESS(o.z_.size() == warm_.size(),
+                        "implicit-midpoint-collocation: warm_start_from another grid");
+    warm_ = o.z_;
+    warm_pending_ = true;
+  }
+
+  int tangent_size() const override { return tangent_.size(); }
+  // The rod's strains xi_j = log(g_j^-1 g_(j+1)) / ds (3.38) and node velocities of y_ (set at
+  // the end of every step, assign_state and add_tangent).
+  void read_tangent(std::span<double> x) const override {
+    tangent_.read(rod_.strains(), rod_.velocities(), x);
+  }
+  // The poses follow the strains, g_(j+1) = g_j exp(ds xi_j) (3.38), a Kirchhoff rod's with
+  // nu = nu* (on the constraint c = 0, as rest_state() puts the initial poses); the node rows of
+  // y_ (p, q, eta) are rewritten from them. The ledger (D, W), the predictor's history (mean
+  // rates of the last steps, one candidate among several) and the kept Jacobian stay.
+  void add_tangent(std::span<const double> dx) override {
+    const auto xi = rod_.strains();
+    const auto eta = rod_.velocities();
+    std::copy(xi.begin(), xi.end(), xi_move_.begin());
+    std::copy(eta.begin(), eta.end(), eta_move_.begin());
+    tangent_.add(dx, xi_move_, eta_move_);
+    const bool kirchhoff = rod_.kirchhoff();
+    const Vector3 nu_star = rod_.problem().model().xi_star().tail<3>();
+    g_move_[0] = rod_.poses()[0];
+    for (std::size_t j = 0; j < xi_move_.size(); ++j) {
+      if (kirchhoff) xi_move_[j].tail<3>() = nu_star;
+      g_move_[j + 1] = g_move_[j] * SE3::exp(rod_.ds() * xi_move_[j]);
+    }
+    rod_.pack_nodes(g_move_, eta_move_, y_);
+    rod_.set_state(y_);
+  }
+
   double max_quaternion_norm_deviation() const override {
     double worst = 0.0;
     for (int j = 0; j < n_; j += SemiDiscreteRod::kBlock)
@@ -269,7 +306,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
  private:
   /// max_i |F_i(z)| / w_i, the norm KINSOL tests.
   double residual_norm(const Vector& u) {
-    residual_(u, F_);
+    residual(u, F_);
     return F_.cwiseProduct(fs_).cwiseAbs().maxCoeff();
   }
 
@@ -282,20 +319,76 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
       rod_.rhs(h_, y, forces, x, f_);
   }
 
+  // Unknowns u = [z; f]: the half-step increment of the node rows and, for Kirchhoff rods,
+  // the step's mean constraint forces (3 per segment, N). Rows: the midpoint rule on the node
+  // rows with f in the stresses, then the constraint at the end of the step, c(y0 + 2 z) = 0
+  // (the midpoint analogue of SHAKE).
+  // Actuator unknowns x (muscle lengths at the midpoint, length-controlled forces) follow,
+  // with their rows: (Delta - L(y_m)) / L, and (L(y_1) - L_target(t + dt)) / L at the end of
+  // the step.
+  void residual(const ConstRef& u, Eigen::Ref<Vector> F) {
+    ym_ = y_.head(n_) + u.head(n_);
+    if (!constrained()) {
+      rod_.rhs(h_, ym_, F);
+      F = a_ * u - F;
+      return;
+    }
+    rod_.rhs(h_, ym_, u.segment(n_, nc_), u.tail(m_), F.head(n_));
+    F.head(n_) = a_ * u.head(n_) - F.head(n_);
+    y1_ = y_.head(n_) + 2.0 * u.head(n_);
+    if (nc_ > 0) rod_.constraint(y1_, F.segment(n_, nc_));
+    if (m_ > 0) rod_.actuator_rows(t_end_, y1_, u.tail(m_), F.tail(m_));
+  }
+
+  /// dF/du at z (KINSOL's Jacobian callback; F(z) is not needed).
+  void jacobian(const ConstRef& z, KinsolSolver::SparseMatrix& J) {
+    const bool reuse = jacobian_calls_ == 0 && cache_valid_;
+    ++jacobian_calls_;
+    if (reuse) {
+      // dF/dz = a I - df/dy: the stored one with the diagonal moved to this step's a (and
+      // stored so: the cache is always the matrix factorised last).
+      std::copy(cached_.data(), cached_.data() + cached_.size(), J.valuePtr());
+      if (a_ != cached_a_) {
+        for (int i = 0; i < n_; ++i) J.coeffRef(i, i) += a_ - cached_a_;
+        std::copy(J.valuePtr(), J.valuePtr() + cached_.size(), cached_.data());
+        cached_a_ = a_;
+      }
+      return;
+    }
+    ym_ = y_.head(n_) + z.head(n_);
+    if (!constrained()) {
+      rod_.newton_matrix(h_, ym_, a_, 1.0, J);
+    } else {
+      y1_ = y_.head(n_) + 2.0 * z.head(n_);
+      rod_.constrained_newton_matrix(h_, ym_, z.segment(n_, nc_), z.tail(m_), a_, 1.0, y1_,
+                                     2.0, J);
+    }
+    std::copy(J.valuePtr(), J.valuePtr() + cached_.size(), cached_.data());
+    cached_a_ = a_;
+    cache_valid_ = true;
+    age_ = 0;
+    ++fresh_jacobians_;
+  }
+
   /// Kirchhoff constraint forces or actuator unknowns: the extended system.
   bool constrained() const { return rod_.kirchhoff() || rod_.unknown_size() > 0; }
 
   KinsolStats solve() {
     // Starting from kept factors, KINSOL's first Jacobian request means they were too stale.
     jacobian_calls_ = ko_.reuse_factorisation ? 1 : 0;
-    return kinsol_.solve(z_, residual_, jacobian_, ko_);
+    // (A lambda that captures only `this` sits in std::function's local buffer: no allocation.)
+    return kinsol_.solve(
+        z_, [this](const ConstRef& u, Eigen::Ref<Vector> F) { residual(u, F); },
+        [this](const ConstRef& u, const ConstRef&, KinsolSolver::SparseMatrix& J) {
+          jacobian(u, J);
+        },
+        ko_);
   }
 
   SemiDiscreteRod rod_;
   KinsolSolver kinsol_;
+  StaggeredTangent tangent_;  ///< the control coordinates (tangent_state.hpp)
   KinsolOptions ko_;
-  KinsolSolver::Residual residual_;
-  KinsolSolver::Jacobian jacobian_;
   int n_ = 0, nc_ = 0;  ///< node unknowns; constraint forces (Kirchhoff rods, else 0)
   int m_ = 0;           ///< actuator unknowns (muscle lengths, length-controlled forces)
   Vector x_;            ///< the last step's actuator unknowns (predictor)
@@ -318,6 +411,11 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   bool cache_valid_ = false;
   int age_ = 0, jacobian_calls_ = 0, max_age_ = 50, max_setup_calls_ = 10;
   long fresh_jacobians_ = 0;
+  // Control: a warm start for the next step (warm_start_from) and add_tangent's work arrays.
+  Vector warm_;
+  bool warm_pending_ = false;
+  std::vector<SE3> g_move_;
+  std::vector<Vector6> xi_move_, eta_move_;
 };
 
 }  // namespace

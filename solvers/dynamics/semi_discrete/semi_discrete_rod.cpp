@@ -138,14 +138,25 @@ SemiDiscreteRod::Vector SemiDiscreteRod::rest_state(std::span<const SE3> g0) con
     }
   }
   Vector y0 = Vector::Zero(dim_);
-  for (int j = 1; j <= last_; ++j) {
-    auto b = y0.segment<kBlock>(kBlock * (j - 1));
-    b.segment<3>(kP) = g[j].translation();
-    const lie::Quaternion& q = g[j].rotation().quaternion();
-    b.segment<4>(kQ) << q.w(), q.x(), q.y(), q.z();
-  }
+  pack_nodes(g, std::vector<Vector6>(n_, Vector6::Zero()), y0);
   if (m_ > 0) y0.tail(m_) = initial_unknowns(y0);
   return y0;
+}
+
+void SemiDiscreteRod::pack_nodes(std::span<const SE3> g, std::span<const Vector6> eta,
+                                 Eigen::Ref<Vector> y) const {
+  RODLAB_THROW_UNLESS(static_cast<int>(g.size()) == n_ && static_cast<int>(eta.size()) == n_ &&
+                          y.size() >= iD_,
+                      "SemiDiscreteRod::pack_nodes: expected {} poses and velocities", n_);
+  for (int j = 1; j <= last_; ++j) {
+    auto b = y.segment<kBlock>(kBlock * (j - 1));
+    b.segment<3>(kP) = g[j].translation();
+    const lie::Quaternion& q = g[j].rotation().quaternion();
+    Eigen::Vector4d wxyz(q.w(), q.x(), q.y(), q.z());
+    if (wxyz.dot(b.segment<4>(kQ)) < 0.0) wxyz = -wxyz;
+    b.segment<4>(kQ) = wxyz;
+    b.segment<6>(kEta) = eta[j];
+  }
 }
 
 SemiDiscreteRod::Vector SemiDiscreteRod::initial_unknowns(const ConstRef& y) const {

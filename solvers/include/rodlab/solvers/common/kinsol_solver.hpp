@@ -87,8 +87,18 @@ class KinsolSolver {
   /// analyses and factorises afresh at the start of every solve().
   explicit KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation = false);
   ~KinsolSolver();
-  KinsolSolver(const KinsolSolver&) = delete;
+  /// A deep copy (allocates): its own context, vectors, matrix and linear solver, in the state
+  /// of `other` (with keep_factorisation, KLU's analysis and kept factors), so that its solves
+  /// repeat those of `other` bit for bit (control snapshots of a time stepper, stepper.hpp). The
+  /// KINSOL memory is created afresh by every solve(), so there is none to copy.
+  KinsolSolver(const KinsolSolver& other);
   KinsolSolver& operator=(const KinsolSolver&) = delete;
+  /// Makes this solver's state that of `other`, a solver of the same pattern and factorisation
+  /// mode: the vectors (N_VScale) and matrix values (copied into this solver's own), and the kept
+  /// KLU analysis and factors (into its arrays when they fit, which is the steady state of a
+  /// snapshot that is saved and restored: no allocation). Throws std::invalid_argument for
+  /// another size or mode.
+  void assign(const KinsolSolver& other);
   KinsolSolver(KinsolSolver&&) noexcept;
   KinsolSolver& operator=(KinsolSolver&&) noexcept;
 

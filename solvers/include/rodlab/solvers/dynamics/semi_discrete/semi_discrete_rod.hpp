@@ -240,6 +240,16 @@ class SemiDiscreteRod {
 
   /// Poses, velocities and strains of y for the reports below (y: size() or node_size()).
   void set_state(const ConstRef& y) const;
+  /// Node poses and velocities (N each, base first) and segment strains xi_j (N - 1, (3.38)) of
+  /// the state last set; every evaluation of f or of a Newton matrix overwrites them.
+  std::span<const SE3> poses() const { return g_; }
+  std::span<const Vector6> velocities() const { return eta_; }
+  std::span<const Vector6> strains() const { return xi_; }
+  /// Writes the node rows of y (p, q, eta of the unknown nodes; a clamped tip's are not) from
+  /// node poses g and velocities eta (N each, base first). Each quaternion takes the sign of the
+  /// one y holds (R(q) = R(-q)), so that the node rows stay on the branch they were on.
+  void pack_nodes(std::span<const SE3> g, std::span<const Vector6> eta,
+                  Eigen::Ref<Vector> y) const;
   /// Energies of the state last set; dissipated and work_in as given.
   Energy energy(double dissipated, double work_in) const;
   Vector3 tip_position() const { return g_.back().translation(); }
