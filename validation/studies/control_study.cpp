@@ -131,6 +131,10 @@ ControlStudyRow run_one(const scene::Scene& scene, const ControlStudySettings& s
     row.status = "timed out";
     row.reason = std::string(e.what()) + " (drawing the targets)";
     row.run_file.clear();
+  } catch (const std::exception& e) {  // a run that cannot start: reported, the study goes on
+    row.status = "failed";
+    row.reason = e.what();
+    row.run_file.clear();
   }
   return row;
 }
