@@ -148,6 +148,20 @@ void close_episode(ControlResult& out, ControlEpisode& e, std::size_t first_row)
   e.mean_error = sum / e.steps;
 }
 
+/// The episode a stopped run (--max-wall-time) was in: its rows are recorded, the episode was
+/// not; closed here as unsuccessful, so that every series.episode index names an episode.
+void close_interrupted_episode(ControlResult& out, const std::string& why) {
+  const auto& index = out.series.episode;
+  if (index.empty() || index.back() < static_cast<int>(out.episodes.size())) return;
+  std::size_t first = index.size();
+  while (first > 0 && index[first - 1] == index.back()) --first;
+  ControlEpisode e;
+  e.target = out.series.target[first];
+  e.reason = why;
+  close_episode(out, e, first);
+  out.episodes.push_back(e);
+}
+
 /// One control decision of a controller of the dynamic plant.
 struct Decision {
   std::string failure;  ///< empty: u is the input to apply
@@ -304,7 +318,6 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
         break;
       }
       record(out, e, t, d.u, plant.tip(), target_at(t), solve_time, d.iterations);
-      check_deadline();  // --max-wall-time between control steps too (variational has no check)
       const double error = out.series.error.back();
       below = error < threshold ? below + 1 : 0;
       if (c.task == scene::ControlTask::reach && below > 0) break;
@@ -408,6 +421,7 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
   } catch (const WallTimeExceeded& e) {  // common/deadline.hpp: the rows so far stay
     out.converged = false;
     out.reason = e.what();
+    close_interrupted_episode(out, e.what());
   }
   if (out.converged && !out.reason)
     for (const auto& e : out.episodes)

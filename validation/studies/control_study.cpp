@@ -88,7 +88,9 @@ std::string file_stem(const ControlColumn& c, const std::string& task, int horiz
 /// The row of a finished run: its summary, and its status ("timed out" when the wall-time
 /// guard stopped it: common/deadline.hpp's message).
 void fill_from_result(ControlStudyRow& row, result::ControlResult r, double length) {
-  row.episodes = static_cast<int>(r.episodes.size());
+  // every target counts, also those a stopped run did not get to (track: one pass)
+  const std::size_t planned = row.task == "track" ? 1 : r.targets.points.size();
+  row.episodes = static_cast<int>(std::max(r.episodes.size(), planned));
   double final_sum = 0.0;
   int stepped = 0;  // episodes with a control step (one that could not start has no error)
   for (const auto& e : r.episodes) {
