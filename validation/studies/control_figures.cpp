@@ -13,9 +13,29 @@
 namespace rodlab::validation::study {
 namespace {
 
-const char* task_title(const std::string& task) {
-  return task == "reach" ? "dynamic reach" : task == "hold" ? "static reach and hold"
-                                                             : "middle-circle tracking";
+/// How each task's figures read (thesis 4.4.1-4.4.3): its title, the error it plots, and the
+/// thesis' figure numbers for the error and the real-time ratio.
+struct TaskFigures {
+  const char* task;
+  const char* title;
+  const char* error_column;
+  const char* error_label;
+  const char* error_figure;
+  const char* ratio_figure;
+};
+constexpr TaskFigures kTaskFigures[] = {
+    {"reach", "dynamic reach", "min_error_pct_L",
+     "lowest tip error, mean over the targets [% of L]", "4.4", "4.5"},
+    {"hold", "static reach and hold", "final_error_pct_L",
+     "final tip error, mean over the targets [% of L]", "4.7", "4.8"},
+    {"track", "middle-circle tracking", "mean_error_pct_L", "mean tip error [% of L]", "4.10",
+     "4.11"},
+};
+
+const TaskFigures& task_figures(const std::string& task) {
+  for (const auto& t : kTaskFigures)
+    if (task == t.task) return t;
+  return kTaskFigures[2];
 }
 
 /// Rows against the horizon; LQR's single run (no horizon) repeated at every horizon, a flat line.
@@ -25,31 +45,33 @@ DataSet horizon_data(const ControlStudy& study) {
                            "real-time ratio against the horizon H (LQR, which has none, repeated "
                            "at every H)",
             .columns = {"series", "task", "column", "horizon", "successes", "episodes",
-                        "mean_error_pct_L", "final_error_pct_L", "real_time_ratio_mean",
+                        "mean_error_pct_L", "final_error_pct_L", "min_error_pct_L",
+                        "real_time_ratio_mean",
                         "real_time_ratio_max", "wall_time_s", "status"}};
   for (const auto& r : study.rows)
     for (const int h : study.settings.horizons) {
       if (r.horizon != 0 && r.horizon != h) continue;
       d.add_row({r.task + ": " + r.column.name, r.task, r.column.name, h, r.successes, r.episodes,
-                 r.mean_error_pct_L, r.final_error_pct_L, r.real_time_ratio_mean,
+                 r.mean_error_pct_L, r.final_error_pct_L, r.min_error_pct_L, r.real_time_ratio_mean,
                  r.real_time_ratio_max, r.wall_time_s, r.status});
     }
   for (const auto& task : study.settings.tasks) {
-    const bool track = task == "track";
-    const std::string title = task_title(task);
+    const TaskFigures& t = task_figures(task);
+    const std::string title = t.title;
     d.figures.push_back(
         {.name = "control_study_error_" + task,
          .kind = "semilogy",
          .x = "horizon",
-         .y = {"mean_error_pct_L"},
+         .y = {t.error_column},
          .series = "series",
          .title = "Error against the horizon: " + title,
          .xlabel = "horizon H [control steps]",
-         .ylabel = "mean tip error over the control steps [% of L]",
-         .caption = "Tip error against the horizon, " + title +
-                    " (as the thesis' figures 4.4, 4.7, 4.10), one curve per column of Table 4.1." +
-                    (track ? " The thesis' NLSQ on its implicit scheme: 3.45 % to 6.90 % of L."
-                           : " Success: below 5 % of L."),
+         .ylabel = t.error_label,
+         .caption = "Tip error (" + std::string(t.error_label) + ") against the horizon, " +
+                    title + ", one curve per column of Table 4.1 (as the thesis' figure " +
+                    t.error_figure + ")." +
+                    (task == "track" ? " Table 4.1's NLSQ Implicit: 3.45 % to 6.90 % of L."
+                                     : " Success: below 5 % of L."),
          .style = "lines+markers",
          .select = task + ":"});
     d.figures.push_back({.name = "control_study_real_time_" + task,
@@ -62,9 +84,8 @@ DataSet horizon_data(const ControlStudy& study) {
                          .ylabel = "controller time / dt_c (mean)",
                          .caption = "Mean real-time ratio (controller wall time per control step "
                                     "over dt_c; below 1 keeps up with real time) against the "
-                                    "horizon, " + title +
-                                    " (as the thesis' figures 4.5, 4.8, 4.11); shared machine, "
-                                    "timings indicative.",
+                                    "horizon, " + title + " (as the thesis' figure " +
+                                    t.ratio_figure + "); shared machine, timings indicative.",
                          .style = "lines+markers",
                          .select = task + ":"});
   }

@@ -91,13 +91,19 @@ void fill_from_result(ControlStudyRow& row, result::ControlResult r, double leng
   // every target counts, also those a stopped run did not get to (track: one pass)
   const std::size_t planned = row.task == "track" ? 1 : r.targets.points.size();
   row.episodes = static_cast<int>(std::max(r.episodes.size(), planned));
-  double final_sum = 0.0;
+  double final_sum = 0.0, min_sum = 0.0;
   int stepped = 0;  // episodes with a control step (one that could not start has no error)
   for (const auto& e : r.episodes) {
     row.successes += e.success ? 1 : 0;
-    if (e.steps > 0) final_sum += e.final_error, ++stepped;
+    if (e.steps == 0) continue;
+    final_sum += e.final_error;
+    min_sum += e.min_error;
+    ++stepped;
   }
-  row.final_error_pct_L = stepped > 0 ? 100.0 * final_sum / stepped / length : kNotMeasured;
+  if (stepped > 0) {
+    row.final_error_pct_L = 100.0 * final_sum / stepped / length;
+    row.min_error_pct_L = 100.0 * min_sum / stepped / length;
+  }
   row.mean_error_pct_L = r.series.error.empty() ? kNotMeasured : r.summary.mean_error_pct_L;
   row.real_time_ratio_mean = r.series.error.empty() ? kNotMeasured : r.summary.real_time_ratio_mean;
   row.real_time_ratio_max = r.series.error.empty() ? kNotMeasured : r.summary.real_time_ratio_max;
@@ -192,7 +198,7 @@ namespace {
 
 const char* kCsvHeader =
     "column,controller,scheme,kirchhoff,dt_control,task,horizon,status,successes,episodes,"
-    "mean_error_pct_L,final_error_pct_L,real_time_ratio_mean,real_time_ratio_max,wall_time_s,"
+    "mean_error_pct_L,final_error_pct_L,min_error_pct_L,real_time_ratio_mean,real_time_ratio_max,wall_time_s,"
     "converged,reason,run_file\n";
 
 }  // namespace
@@ -204,7 +210,7 @@ std::string control_table_csv(const ControlStudy& study) {
            (r.column.kirchhoff ? "1" : "0") + "," + csv_number(r.column.dt_control) + "," +
            r.task + "," + std::to_string(r.horizon) + "," + csv_text(r.status) + "," +
            std::to_string(r.successes) + "," + std::to_string(r.episodes) + "," +
-           csv_number(r.mean_error_pct_L) + "," + csv_number(r.final_error_pct_L) + "," +
+           csv_number(r.mean_error_pct_L) + "," + csv_number(r.final_error_pct_L) + "," + csv_number(r.min_error_pct_L) + "," +
            csv_number(r.real_time_ratio_mean) + "," + csv_number(r.real_time_ratio_max) + "," +
            csv_number(r.wall_time_s) + "," + (r.converged ? "1" : "0") + "," +
            csv_text(r.reason) + "," + r.run_file + "\n";
@@ -241,6 +247,7 @@ Json control_study_json(const ControlStudy& study) {
                     {"episodes", r.episodes},
                     {"mean_error_pct_L", number_or_null(r.mean_error_pct_L)},
                     {"final_error_pct_L", number_or_null(r.final_error_pct_L)},
+                    {"min_error_pct_L", number_or_null(r.min_error_pct_L)},
                     {"real_time_ratio_mean", number_or_null(r.real_time_ratio_mean)},
                     {"real_time_ratio_max", number_or_null(r.real_time_ratio_max)},
                     {"wall_time_s", r.wall_time_s},

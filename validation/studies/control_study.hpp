@@ -70,6 +70,9 @@ struct ControlStudyRow {
   int successes = 0, episodes = 0;
   double mean_error_pct_L = kNotMeasured;   ///< summary.mean_error_pct_L
   double final_error_pct_L = kNotMeasured;  ///< mean over episodes of their final error, % of L
+  /// Mean over episodes of their lowest error, % of L (thesis 4.4.1, dynamic reach: "we record
+  /// the lowest error achieved").
+  double min_error_pct_L = kNotMeasured;
   double real_time_ratio_mean = kNotMeasured, real_time_ratio_max = kNotMeasured;
   double wall_time_s = 0.0;
   bool converged = false;
