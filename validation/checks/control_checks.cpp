@@ -20,7 +20,7 @@ namespace rodlab::validation {
 namespace {
 
 /// --full: the wall-time limit of one run [s] (the variational and iLQR runs are slow).
-constexpr double kFullRunLimit = 300.0;
+constexpr double kFullRunLimit = 120.0;
 
 /// Table 4.1, NLSQ Implicit: the mean middle-circle error [% of L] at dt_c (0: no thesis value).
 double thesis_track_error(double dt_control) {
