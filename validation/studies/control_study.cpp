@@ -121,11 +121,9 @@ void fill_from_result(ControlStudyRow& row, result::ControlResult r, double leng
 ControlStudyRow run_one(const scene::Scene& scene, const ControlStudySettings& s,
                         const ControlColumn& c, const std::string& task, int horizon) {
   ControlStudyRow row{.column = c, .task = task, .horizon = horizon};
-  row.run_file = "runs/" + file_stem(c, task, horizon) + ".json";
   if (c.controller == "lqr" && task == "track") {  // control_run.hpp: lqr regulates, no tracking
     row.status = "not run";
     row.reason = "lqr: reach and hold only (it regulates about a target's equilibrium)";
-    row.run_file.clear();
     return row;
   }
   solvers::control::ControlRunOptions options;
@@ -135,14 +133,13 @@ ControlStudyRow run_one(const scene::Scene& scene, const ControlStudySettings& s
   try {
     const solvers::DeadlineScope deadline(s.max_wall_time);
     fill_from_result(row, solvers::control::run_control(scene, options), scene.rod.length);
+    row.run_file = "runs/" + file_stem(c, task, horizon) + ".json";
   } catch (const solvers::WallTimeExceeded& e) {  // while drawing the targets
     row.status = "timed out";
     row.reason = std::string(e.what()) + " (drawing the targets)";
-    row.run_file.clear();
   } catch (const std::exception& e) {  // a run that cannot start: reported, the study goes on
     row.status = "failed";
     row.reason = e.what();
-    row.run_file.clear();
   }
   return row;
 }

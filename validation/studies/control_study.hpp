@@ -7,6 +7,7 @@
 // 4.4-4.11 plot error and real-time ratio against H). One `run_control` per column, task and
 // horizon (LQR has no horizon: one run per task); a run over its wall-time limit is kept as
 // "timed out", a task the controller does not do as "not run", never left out.
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <string>
