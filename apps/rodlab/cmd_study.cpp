@@ -1,5 +1,6 @@
 // rodlab study KIND SCENE [options]: convergence, work-precision and stability studies, and
-// the scheme recommendation built on them (docs/studies.md). This file reads and checks the
+// the scheme recommendation built on them (docs/studies.md); `control` (the thesis' Table 4.1)
+// is handed to study_control.cpp. This file reads and checks the
 // command line and the scene (nothing runs and nothing is written until everything is
 // valid), then hands over to the study functions (study_*.hpp) and writes their outputs.
 #include <array>
