@@ -3,8 +3,10 @@
 
     python3 validation/make_figures.py DIR
 
-DIR is the output directory of `rodlab validate` (default out/validation). The script reads
-DIR/report.json (schema rodlab.validation-report/1), and for every data set listed there reads
+DIR is the output directory of `rodlab validate` (default out/validation) or of a study that
+draws figures (`rodlab study control`). The script reads DIR/report.json (schema
+rodlab.validation-report/1), else DIR/figures.json (schema rodlab.figures/1, the same list of
+data sets), and for every data set listed there reads
 DIR/data/NAME.csv and draws each of its figures to DIR/figures/FIGURE.svg, following the figure
 spec in report.json:
 
@@ -37,15 +39,9 @@ def main(argv):
         print(__doc__.strip())
         return 0 if len(argv) == 2 else 2
     out_dir = argv[1] if len(argv) == 2 else os.path.join("out", "validation")
-    report_path = os.path.join(out_dir, "report.json")
-    try:
-        with open(report_path, encoding="utf-8") as f:
-            report = json.load(f)
-    except (OSError, ValueError) as e:
-        print(f"make_figures: cannot read {report_path}: {e}", file=sys.stderr)
-        return 2
-    if report.get("schema") != "rodlab.validation-report/1":
-        print(f"make_figures: {report_path} is not a rodlab.validation-report/1", file=sys.stderr)
+    report, problem = read_figure_index(out_dir)
+    if report is None:
+        print(f"make_figures: {problem}", file=sys.stderr)
         return 2
 
     try:
@@ -96,6 +92,26 @@ def main(argv):
                 failures += 1
     print(f"make_figures: {drawn} figures drawn, {failures} failed")
     return 1 if failures else 0
+
+
+def read_figure_index(out_dir):
+    """The data sets and figure specs of DIR: DIR/report.json (rodlab.validation-report/1), or,
+    in a study's directory, DIR/figures.json (rodlab.figures/1: the same data_sets list, e.g.
+    `rodlab study control`). Returns (index, None) or (None, why)."""
+    for name, schema in (("report.json", "rodlab.validation-report/1"),
+                         ("figures.json", "rodlab.figures/1")):
+        path = os.path.join(out_dir, name)
+        if not os.path.exists(path):
+            continue
+        try:
+            with open(path, encoding="utf-8") as f:
+                index = json.load(f)
+        except (OSError, ValueError) as e:
+            return None, f"cannot read {path}: {e}"
+        if index.get("schema") != schema:
+            return None, f"{path} is not a {schema}"
+        return index, None
+    return None, f"cannot read {os.path.join(out_dir, 'report.json')} (nor figures.json)"
 
 
 def read_csv(path):

@@ -1,5 +1,6 @@
 // rodlab study KIND SCENE [options]: convergence, work-precision and stability studies, and
-// the scheme recommendation built on them (docs/studies.md). This file reads and checks the
+// the scheme recommendation built on them (docs/studies.md); `control` (the thesis' Table 4.1)
+// is handed to study_control.cpp. This file reads and checks the
 // command line and the scene (nothing runs and nothing is written until everything is
 // valid), then hands over to the study functions (study_*.hpp) and writes their outputs.
 #include <array>
@@ -22,6 +23,7 @@
 #include "studies/processes.hpp"
 #include "studies/stability.hpp"
 #include "studies/work_precision.hpp"
+#include "study_control.hpp"
 
 namespace rodlab::cli {
 
@@ -32,18 +34,19 @@ using solvers::Problem;
 using study::Json;
 
 constexpr std::array<std::string_view, 2> kPositionals{"KIND", "SCENE"};
-constexpr std::array<std::string_view, 4> kKinds{"convergence", "work-precision", "stability",
-                                                 "recommend"};
+constexpr std::array<std::string_view, 5> kKinds{"convergence", "work-precision", "stability",
+                                                 "recommend", "control"};
 constexpr std::array<std::string_view, 3> kReferences{"kinsol", "ida", "chebyshev"};
 constexpr OptionSpec kStudyTolOption{
     "--tol", "X",
     "recommend: the tip error to reach [m]; other studies: the solver tolerance "
     "(default: solver.tol)"};
 constexpr std::array<std::string_view, 2> kRefinements{"time", "joint"};
-constexpr std::array<OptionSpec, 13> kOptions{
+constexpr std::array<OptionSpec, 13> kSweepOptions{
     OptionSpec{"--schemes", "A,B,...",
                "schemes to compare, comma-separated (one problem class); default: all of the problem class"},
-    OptionSpec{"--nodes", "N1,N2,...", "node counts, comma-separated integers >= 2"},
+    OptionSpec{"--nodes", "N1,N2,...",
+               "node counts, comma-separated integers >= 2; control: one N (default 20)"},
     OptionSpec{"--dt", "X1,X2,...", "time steps > 0, comma-separated (dynamics studies)"},
     OptionSpec{"--t-end", "T", "length of the dynamics runs [s]; default: dynamics.t_end"},
     OptionSpec{"--refine", "time|joint",
@@ -57,6 +60,15 @@ constexpr std::array<OptionSpec, 13> kOptions{
     OptionSpec{"--jobs", "N", "runs in parallel on this machine, integer >= 1 (default 1)"},
     OptionSpec{"--out", "DIR", "directory for the study's data (default out/study-KIND)"},
     kSetOption};
+
+/// Every option of `rodlab study`: the sweep kinds' and control's.
+constexpr auto kOptions = [] {
+  std::array<OptionSpec, kSweepOptions.size() + kStudyControlOptions.size()> all{};
+  std::size_t i = 0;
+  for (const auto& o : kSweepOptions) all[i++] = o;
+  for (const auto& o : kStudyControlOptions) all[i++] = o;
+  return all;
+}();
 
 constexpr int kDefaultRepeats = 5;
 
@@ -130,6 +142,9 @@ void check_kind_options(OptionReader& reader, const std::string& kind) {
                    *a.value("--reference") + ")");
   if (a.has("--moduli") && kind != "stability")
     reader.problem("--moduli: only `rodlab study stability` varies Young's modulus");
+  for (const auto& o : kStudyControlOptions)
+    if (a.has(o.name))
+      reader.problem(std::string(o.name) + ": only `rodlab study control` takes it");
   if (kind == "recommend" && !a.has("--tol"))
     reader.problem("--tol: `rodlab study recommend` needs the tip error to reach, e.g. --tol 1e-6");
 }
@@ -327,8 +342,9 @@ int run_stability_kind(const study::Settings& settings, const study::Executor& e
 }
 
 int run(const Invocation& inv) {
-  OptionReader reader(inv.args);
   const std::string kind = inv.args.positionals().front();
+  if (kind == "control") return run_control_study_kind(inv);
+  OptionReader reader(inv.args);
   bool kind_ok = false;
   for (const auto k : kKinds) kind_ok = kind_ok || k == kind;
   if (!kind_ok) {
@@ -397,7 +413,7 @@ const Command& study_command() {
   static const Command command{
       "study",
       "KIND SCENE [options]",
-      "convergence, work-precision, stability studies; scheme recommendation",
+      "convergence, work-precision, stability studies; scheme recommendation; Table 4.1 (control)",
       "KIND is one of:\n"
       "  convergence      error against the reference as the nodes (or dt) are refined; observed\n"
       "                   order (DIR/convergence.csv, convergence_orders.csv, study.json);\n"
@@ -410,15 +426,21 @@ const Command& study_command() {
       "  recommend        the fastest measured scheme and resolution that meets --tol (a tip\n"
       "                   error in m) within --budget-ms; reuses DIR's work-precision data when\n"
       "                   it was measured with the same settings (DIR/recommendation.json)\n"
+      "  control          the thesis' Table 4.1: NLSQ-MPC on implicit-midpoint (one column per\n"
+      "                   --dt-control) and on the Kirchhoff rod (variational), LQR and iLQR, on\n"
+      "                   dynamic reach, static reach-and-hold and middle-circle tracking at\n"
+      "                   every --horizons (DIR/table.csv, table.md, study.json, runs/*.json,\n"
+      "                   figures/ with python3-matplotlib); the options marked control: are\n"
+      "                   its own, --nodes takes one N (docs/control.md)\n"
       "A study is a statics study unless its schemes, its reference, --dt or --t-end make it a\n"
       "dynamics one (stability always is). Without --schemes, every scheme of the\n"
       "class takes part. The options and the scene are checked before anything runs.\n"
       "--jobs N runs N cases at once; under `mpirun -n K` the cases are split across the ranks\n"
       "and rank 0 writes the merged outputs (docs/studies.md).\n"
       "\n"
-      "Exit status: 0 the study ran; 1 some runs failed (the report says which), or recommend\n"
-      "found nothing that meets --tol within the budget; 2 bad input or usage (nothing is\n"
-      "written).\n",
+      "Exit status: 0 the study ran; 1 some runs failed or (control) timed out (the report says\n"
+      "which), or recommend found nothing that meets --tol within the budget; 2 bad input or\n"
+      "usage (nothing is written).\n",
       kPositionals,
       kOptions,
       &run};

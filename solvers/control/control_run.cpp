@@ -13,6 +13,7 @@
 #include "rodlab/rod/characteristics.hpp"
 #include "rodlab/scene/trajectory.hpp"
 #include "rodlab/solvers/dynamics/dynamic_workspace.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/common/deadline.hpp"
 #include "rodlab/solvers/control/ilqr.hpp"
 #include "rodlab/solvers/control/inverse_statics.hpp"
@@ -70,9 +71,14 @@ std::vector<Vector3> dynamic_targets(const scene::Scene& scene, const ControlRun
   dynamics::DynamicWorkspaceOptions w;
   w.solve = o.solver;
   w.solve.max_iterations = std::max(o.solver.max_iterations, PlantOptions::kShotsPerStep);
-  w.solve.dt = c.dt_control;
   w.holds = std::max(kDynamicHolds, c.target_count);
   const auto problem = dynamics::DynamicProblem::from_scene(scene);
+  // The plant's step (plant.cpp): dynamics.dt when set, else one step per control step, but the
+  // explicit variational scheme below its stability limit (dt_c itself is far above it).
+  w.solve.dt = o.solver.dt > 0.0 ? o.solver.dt
+               : o.solver.scheme == "variational"
+                   ? dynamics::auto_time_step(problem, "variational", o.solver.nodes)
+                   : c.dt_control;
   const auto ch = rod::characteristics(problem.model(), o.solver.nodes, rod::TipSupport::free);
   w.hold_time = std::max(c.dt_control, 1.0 / ch.first_bending_frequency_hz);
   w.outputs_per_hold = 10;
@@ -140,6 +146,20 @@ void close_episode(ControlResult& out, ControlEpisode& e, std::size_t first_row)
   double sum = 0.0;
   for (std::size_t i = first_row; i < err.size(); ++i) sum += err[i];
   e.mean_error = sum / e.steps;
+}
+
+/// The episode a stopped run (--max-wall-time) was in: its rows are recorded, the episode was
+/// not; closed here as unsuccessful, so that every series.episode index names an episode.
+void close_interrupted_episode(ControlResult& out, const std::string& why) {
+  const auto& index = out.series.episode;
+  if (index.empty() || index.back() < static_cast<int>(out.episodes.size())) return;
+  std::size_t first = index.size();
+  while (first > 0 && index[first - 1] == index.back()) --first;
+  ControlEpisode e;
+  e.target = out.series.target[first];
+  e.reason = why;
+  close_episode(out, e, first);
+  out.episodes.push_back(e);
 }
 
 /// One control decision of a controller of the dynamic plant.
@@ -403,6 +423,7 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
   } catch (const WallTimeExceeded& e) {  // common/deadline.hpp: the rows so far stay
     out.converged = false;
     out.reason = e.what();
+    close_interrupted_episode(out, e.what());
   }
   if (out.converged && !out.reason)
     for (const auto& e : out.episodes)

@@ -7,6 +7,7 @@
 
 #include "rodlab/check.hpp"
 #include "rodlab/rod/characteristics.hpp"
+#include "rodlab/solvers/common/deadline.hpp"
 #include "rodlab/solvers/dynamics/shooting/step_bound.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/registry.hpp"
@@ -98,6 +99,9 @@ void Plant::set_input(const Eigen::Ref<const Eigen::VectorXd>& u) {
 }
 
 dynamics::StepStatus Plant::advance() {
+  // The run's wall-time guard (common/deadline.hpp, --max-wall-time) once per control step: the
+  // variational steps do not check it themselves, and a controller's rollouts are many steps.
+  check_deadline();
   dynamics::StepStatus total;
   for (int k = 0; k < substeps_; ++k) {
     const dynamics::StepStatus s = stepper_->step(t_, dt_);

@@ -170,6 +170,20 @@ BOOST_AUTO_TEST_CASE(html_has_every_check_and_embeds_every_figure) {
   BOOST_TEST(contains(html, "SUNDIALS"));
 }
 
+// A data set's table (the control study's Table 4.1) is shown as is in report.md and, escaped,
+// in index.html; figures.json lists the same data sets as report.json for make_figures.py.
+BOOST_AUTO_TEST_CASE(a_data_set_table_is_shown) {
+  TempDir dir;
+  auto r = hand_made();
+  r.data_sets[0].table = "| H = 1 | a <b> |\n|---|---|\n| row | 10/10 |\n";
+  BOOST_TEST(contains(to_markdown(r), r.data_sets[0].table));
+  BOOST_TEST(contains(to_html(r, dir.path), "<pre>| H = 1 | a &lt;b&gt; |"));
+  const auto index = nlohmann::json::parse(figure_index_json(r.data_sets));
+  const auto report = nlohmann::json::parse(to_json(r));
+  BOOST_TEST(index["schema"] == "rodlab.figures/1");
+  BOOST_TEST(index["data_sets"] == report["data_sets"]);
+}
+
 BOOST_AUTO_TEST_CASE(markdown_has_every_check_and_links_every_figure) {
   const auto r = hand_made();
   const std::string md = to_markdown(r);

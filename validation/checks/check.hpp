@@ -86,6 +86,9 @@ struct DataSet {
   std::vector<std::string> columns;
   std::vector<std::vector<Cell>> rows;
   std::vector<FigureSpec> figures;
+  /// Optional Markdown shown in the report as is (report.md; index.html as preformatted text),
+  /// e.g. the Table 4.1 reproduction of the control study.
+  std::string table;
 
   /// Appends a row (throws std::logic_error if its width is not columns.size()).
   void add_row(std::vector<Cell> row);
@@ -152,6 +155,11 @@ std::vector<Check> dynamics_checks(const ValidationContext& context);
 /// against an independent reference (timings are reported, never gated), the stability map of
 /// the explicit scheme and the implicit schemes' step scans.
 std::vector<Check> study_checks(const ValidationContext& context);
+
+/// control_checks.cpp: the thesis' Table 4.1 by `rodlab study control` (--quick: NLSQ-MPC on
+/// implicit-midpoint at dt_c = 0.05 s, H = 1 and 5, dynamic reach of 3 targets and the middle
+/// circle; --full: the whole table), checked against Table 4.1's NLSQ Implicit columns.
+std::vector<Check> control_checks(const ValidationContext& context);
 
 /// extremes_checks.cpp: every scheme at the extremes of E, N and dt, run as child processes:
 /// exit 0 only with finite results, otherwise exit 1 with a reason or exit 2 up front; no crash,

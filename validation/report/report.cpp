@@ -52,6 +52,23 @@ Json figure_json(const FigureSpec& f) {
               {"select", f.select}};
 }
 
+/// The data sets with their figure specs (what validation/make_figures.py reads).
+Json data_sets_json(const std::vector<DataSet>& sets) {
+  Json out = Json::array();
+  for (const auto& d : sets) {
+    Json figs = Json::array();
+    for (const auto& f : d.figures) figs.push_back(figure_json(f));
+    out.push_back(Json{{"name", d.name},
+                       {"family", d.family},
+                       {"file", data_file(d)},
+                       {"description", d.description},
+                       {"columns", d.columns},
+                       {"rows", d.rows.size()},
+                       {"figures", figs}});
+  }
+  return out;
+}
+
 /// Markdown table cells must not contain '|' or line breaks.
 std::string cell(std::string text) {
   std::string out;
@@ -151,23 +168,12 @@ std::string to_json(const ValidationReport& r) {
     families.push_back(
         Json{{"name", f.name}, {"description", f.description}, {"checks", n}, {"passed", ok}});
   }
-  Json data_sets = Json::array();
+  Json data_sets = data_sets_json(r.data_sets);
   Json figures = Json::array();
-  for (const auto& d : r.data_sets) {
-    Json figs = Json::array();
-    for (const auto& f : d.figures) {
-      figs.push_back(figure_json(f));
+  for (const auto& d : r.data_sets)
+    for (const auto& f : d.figures)
       figures.push_back(Json{{"name", f.name}, {"file", figure_file(f)}, {"data_set", d.name},
                              {"caption", f.caption}});
-    }
-    data_sets.push_back(Json{{"name", d.name},
-                             {"family", d.family},
-                             {"file", data_file(d)},
-                             {"description", d.description},
-                             {"columns", d.columns},
-                             {"rows", d.rows.size()},
-                             {"figures", figs}});
-  }
   Json json{{"schema", kValidationReportSchema},
             {"mode", r.mode},
             {"scenes_dir", r.scenes_dir},
@@ -183,6 +189,11 @@ std::string to_json(const ValidationReport& r) {
                              {"command", r.figures.command},
                              {"files", figures}}}};
   return json.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
+std::string figure_index_json(const std::vector<DataSet>& data_sets) {
+  const Json json{{"schema", kFigureIndexSchema}, {"data_sets", data_sets_json(data_sets)}};
+  return json.dump(2, ' ', false, Json::error_handler_t::replace);
 }
 
 namespace {
@@ -234,6 +245,7 @@ std::string to_markdown(const ValidationReport& r) {
       if (d.family != family.name) continue;
       if (!any) out += "\n";
       any = true;
+      if (!d.table.empty()) out += d.table + "\n";
       for (const auto& f : d.figures)
         out += "![" + cell(f.title) + "](" + figure_file(f) + ")\n\n*" + f.caption +
                "* (data: [" + data_file(d) + "](" + data_file(d) + "))\n\n";
@@ -406,6 +418,7 @@ std::string html_figures(const ValidationReport& r, const std::string& family,
   std::string out;
   for (const auto& d : r.data_sets) {
     if (d.family != family) continue;
+    if (!d.table.empty()) out += "<pre>" + e(d.table) + "</pre>\n";
     for (const auto& fig : d.figures) {
       const auto svg = read_file(out_dir / figure_file(fig));
       out += "<figure id=\"figure-" + e(fig.name) + "\">\n";

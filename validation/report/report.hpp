@@ -15,6 +15,8 @@
 namespace rodlab::validation {
 
 inline constexpr const char* kValidationReportSchema = "rodlab.validation-report/1";
+/// A directory's figures without a report (a study's figures.json): its data sets and specs.
+inline constexpr const char* kFigureIndexSchema = "rodlab.figures/1";
 
 struct FamilyInfo {
   std::string name, description;
@@ -46,6 +48,9 @@ std::string data_file(const DataSet& data);       ///< data/NAME.csv
 std::string figure_file(const FigureSpec& figure);  ///< figures/NAME.svg
 
 std::string to_json(const ValidationReport& report);
+/// figures.json (schema rodlab.figures/1): the data sets and their figure specs, as report.json
+/// lists them, for make_figures.py in a directory that has no report (a study's).
+std::string figure_index_json(const std::vector<DataSet>& data_sets);
 std::string to_markdown(const ValidationReport& report);
 /// The page; figures are read from out_dir / figure_file(...) and embedded (a missing figure
 /// is named as missing, with the reason from report.figures).

@@ -68,7 +68,8 @@ class Plant {
   void set_input(const Eigen::Ref<const Eigen::VectorXd>& u);
   const Eigen::VectorXd& input() const { return u_; }
   /// Advances one control step under the held input; a failed step (no convergence, instability)
-  /// is reported in the status and leaves the state where the scheme stopped.
+  /// is reported in the status and leaves the state where the scheme stopped. Throws
+  /// WallTimeExceeded (common/deadline.hpp) once the thread's deadline has passed.
   dynamics::StepStatus advance();
 
   /// Whether advance_linearised() is available (the scheme differentiates its own step).
