@@ -114,7 +114,8 @@ bool NlsqMpc::linearised_tracking_rows(Plant& plant, Eigen::MatrixXd& J, std::st
   const double L = plant.length();
   if (static_cast<int>(A_.size()) != H) A_.resize(H), B_.resize(H), C_.resize(H), D_.resize(H);
   for (int k = 0; k < H; ++k) {
-    plant.restore(states_[k]);  // x_k under u_k (the rollout)
+    plant.restore(states_[k]);  // x_k under u_k (the rollout); its step's solve ends in x_(k+1)
+    plant.warm_start_from(states_[k + 1]);
     const auto status = plant.advance_linearised(A_[k], B_[k], C_[k], D_[k]);
     if (!status.ok) {
       reason = status.reason;
@@ -196,8 +197,16 @@ MpcPlan NlsqMpc::plan(Plant& plant, std::span<const Vector3> targets) {
   std::string why;
   ++out.rollouts;
   if (!residuals(plant, targets, U_, r_, why)) {
-    out.ok = false;
-    out.reason = "nlsq-mpc: the rollout of the warm start failed: " + why;
+    // the shifted plan's input jumps can exceed what single shooting converges from at a small
+    // dt (docs/dynamics.md "The lower step bound"); the input now applied, held, has no jump
+    for (int k = 0; k < H; ++k) U_.segment(k * m, m) = applied_;
+    ++out.rollouts;
+    std::string held;
+    if (!residuals(plant, targets, U_, r_, held)) {
+      out.ok = false;
+      out.reason = "nlsq-mpc: the rollout of the warm start failed: " + why +
+                   "; so did the rollout of the input held: " + held;
+    }
   }
   bool at_U = true;  // the last rollout was U_'s (the Jacobian is built along it)
   // Along U_; false (reason set) when a step fails.

@@ -48,8 +48,10 @@ bool PlantIlqrModel::linearise(int k, const Eigen::VectorXd& u, Eigen::MatrixXd&
                                Eigen::MatrixXd& B, Eigen::VectorXd& l_x, Eigen::VectorXd& l_u,
                                Eigen::MatrixXd& l_xx, Eigen::MatrixXd& l_uu,
                                Eigen::MatrixXd& l_ux) {
-  // the step's Jacobians at the kept state and the nominal tip error after it
+  // the step's Jacobians at the kept state and the nominal tip error after it (the nominal
+  // rollout's solve of the step, which ended in the next kept state, starts this one)
   plant_.restore(kept_[k]);
+  if (k + 1 < horizon_) plant_.warm_start_from(kept_[k + 1]);
   plant_.set_input(u);
   Vector3 tip;
   if (!lin_.jacobians(plant_, A, B, C_, D_, &tip).ok) return false;
