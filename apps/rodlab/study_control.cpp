@@ -64,12 +64,10 @@ study::ControlStudySettings read_settings(OptionReader& reader) {
 void print_row(const study::ControlStudyRow& r) {
   std::cout << "  " << r.column.name << ", " << r.task
             << (r.horizon > 0 ? ", H = " + std::to_string(r.horizon) : std::string()) << ": "
-            << r.status;
-  if (r.status != "not run")
-    std::cout << ", " << r.successes << "/" << r.episodes << " successful, mean error "
-              << io::format_number(r.mean_error_pct_L) << " % of L, real-time ratio "
-              << io::format_number(r.real_time_ratio_mean) << " mean, "
-              << io::format_number(r.wall_time_s) << " s";
+            << r.status << ", " << r.successes << "/" << r.episodes << " successful, mean error "
+            << io::format_number(r.mean_error_pct_L) << " % of L, real-time ratio "
+            << io::format_number(r.real_time_ratio_mean) << " mean, "
+            << io::format_number(r.wall_time_s) << " s";
   if (r.status != "done" && !r.reason.empty()) std::cout << " (" << r.reason << ")";
   std::cout << '\n' << std::flush;
 }
@@ -119,7 +117,7 @@ int run_control_study_kind(const Invocation& inv) {
   std::cout << '\n' << study::control_table_markdown(result) << "\nwritten: " << dir << '\n';
   if (!inv.args.has("--no-figures")) draw_figures(result, dir);
   const bool all_done = std::all_of(result.rows.begin(), result.rows.end(), [](const auto& r) {
-    return r.status == "done" || r.status == "not run";
+    return r.status == "done";
   });
   return all_done ? kSolved : kNotConverged;
 }

@@ -239,12 +239,15 @@ class IlqrController final : public DynamicController {
   IlqrOptions options_;
 };
 
-/// Reach and hold by infinite-horizon LQR about the equilibrium of the inverse statics' inputs
-/// for the target (lqr_hold.hpp); the gain is designed at the episode's start.
+/// Infinite-horizon LQR about the equilibrium of the inverse statics' inputs for the target
+/// (lqr_hold.hpp); the gain is designed at the episode's start. Tracking: the reference follows
+/// the quasi-static equilibria of the coming targets (one inverse-statics solve per control
+/// step, from the last inputs) with that gain.
 class LqrController final : public DynamicController {
  public:
   LqrController(const scene::Scene& scene, const PlantOptions& po, const scene::Control& c)
-      : scene_(scene), po_(po), statics_(scene, inverse_statics_options(c, scene, po.solver.nodes)) {
+      : scene_(scene), po_(po), statics_(scene, inverse_statics_options(c, scene, po.solver.nodes)),
+        track_(c.task == scene::ControlTask::track) {
     weights_.input = std::max(c.weights.input, LqrWeights{}.input);
   }
   std::string start(const Plant&, const Vector3& target) override {
@@ -253,14 +256,19 @@ class LqrController final : public DynamicController {
     gain_ = hold_gain(scene_, po_, equilibrium.u, weights_);
     return gain_.ok ? std::string() : gain_.reason;
   }
-  Decision decide(Plant& plant, std::span<const Vector3>) override {
-    return {{}, gain_.control(plant), 1};
+  Decision decide(Plant& plant, std::span<const Vector3> horizon) override {
+    if (!track_) return {{}, gain_.control(plant), 1};
+    // the closest feasible equilibrium if the target is out of reach (its inputs still apply)
+    const InverseStaticsResult reference = statics_.solve(horizon.front());
+    if (!reference.converged) return {reference.reason, {}, reference.updates};
+    return {{}, gain_.control(plant, reference.u), reference.updates};
   }
 
  private:
   const scene::Scene& scene_;
   PlantOptions po_;
   InverseStatics statics_;
+  bool track_;
   LqrWeights weights_;
   HoldGain gain_;
 };
@@ -391,9 +399,6 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
                       "--controller: '{}' is not available yet (built: quasi-static, nlsq-mpc, "
                       "lqr, ilqr)",
                       options.controller);
-  RODLAB_THROW_UNLESS(options.controller != "lqr" || c.task != scene::ControlTask::track,
-                      "--controller lqr: reach and hold only (it regulates about the target's "
-                      "equilibrium); track with nlsq-mpc");
   RODLAB_THROW_UNLESS(c.task != scene::ControlTask::track || c.trajectory.has_value(),
                       "control.task track needs control.trajectory");
   RODLAB_THROW_UNLESS(c.horizon >= 1 && c.dt_control > 0.0 && c.threshold > 0.0 &&

@@ -11,10 +11,10 @@
 
 namespace rodlab::solvers::control {
 
-Eigen::VectorXd HoldGain::control(const Plant& plant) const {
+Eigen::VectorXd HoldGain::control(const Plant& plant, const Eigen::VectorXd& u_ref) const {
   Eigen::VectorXd x(plant.state_size());
   plant.read_state(std::span<double>(x.data(), x.size()));
-  const Eigen::VectorXd u = u_star - K * (x - x_star);
+  const Eigen::VectorXd u = u_ref - K * (x - x_star - steady * (u_ref - u_star));
   return u.cwiseMax(plant.lower()).cwiseMin(plant.upper());
 }
 
@@ -58,6 +58,8 @@ HoldGain hold_gain(const scene::Scene& scene, const PlantOptions& options,
     return out;
   }
   out.K = dare.K + RiNt;
+  const int n = plant.state_size();
+  out.steady = (Eigen::MatrixXd::Identity(n, n) - A).partialPivLu().solve(B);
   out.spectral_radius = (A - B * out.K).eigenvalues().cwiseAbs().maxCoeff();
   out.ok = true;
   return out;

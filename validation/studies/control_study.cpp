@@ -121,11 +121,6 @@ void fill_from_result(ControlStudyRow& row, result::ControlResult r, double leng
 ControlStudyRow run_one(const scene::Scene& scene, const ControlStudySettings& s,
                         const ControlColumn& c, const std::string& task, int horizon) {
   ControlStudyRow row{.column = c, .task = task, .horizon = horizon};
-  if (c.controller == "lqr" && task == "track") {  // control_run.hpp: lqr regulates, no tracking
-    row.status = "not run";
-    row.reason = "lqr: reach and hold only (it regulates about a target's equilibrium)";
-    return row;
-  }
   solvers::control::ControlRunOptions options;
   options.controller = c.controller;
   options.control = run_control_settings(scene, s, c, task, horizon);

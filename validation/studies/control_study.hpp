@@ -6,7 +6,7 @@
 // static-workspace targets, tracking the middle circle), each at every horizon H (figures
 // 4.4-4.11 plot error and real-time ratio against H). One `run_control` per column, task and
 // horizon (LQR has no horizon: one run per task); a run over its wall-time limit is kept as
-// "timed out", a task the controller does not do as "not run", never left out.
+// "timed out", never left out.
 #include <iterator>
 #include <limits>
 #include <optional>
@@ -59,7 +59,7 @@ struct ControlColumn {
   double dt_control = 0.0;
 };
 
-/// A number the run did not produce (no control step: not run, or stopped before the first).
+/// A number the run did not produce (stopped before its first control step).
 inline constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
 
 /// One run: a column on a task at a horizon.
@@ -67,7 +67,7 @@ struct ControlStudyRow {
   ControlColumn column;
   std::string task;
   int horizon = 0;           ///< 0: the controller has none (LQR)
-  std::string status;        ///< "done", "failed" (a solver failed), "timed out", "not run"
+  std::string status;        ///< "done", "failed" (a solver failed), "timed out"
   int successes = 0, episodes = 0;
   double mean_error_pct_L = kNotMeasured;   ///< summary.mean_error_pct_L
   double final_error_pct_L = kNotMeasured;  ///< mean over episodes of their final error, % of L
@@ -77,9 +77,9 @@ struct ControlStudyRow {
   double real_time_ratio_mean = kNotMeasured, real_time_ratio_max = kNotMeasured;
   double wall_time_s = 0.0;
   bool converged = false;
-  std::string reason;     ///< the run's reason, or why it was not run
-  std::string run_file;   ///< runs/NAME.json (empty when not run)
-  std::optional<result::ControlResult> result;  ///< the run's result (none when not run)
+  std::string reason;     ///< the run's reason
+  std::string run_file;   ///< runs/NAME.json (empty when the run produced no result)
+  std::optional<result::ControlResult> result;  ///< the run's result (none when it produced none)
 };
 
 struct ControlStudy {

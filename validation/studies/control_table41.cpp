@@ -58,7 +58,6 @@ const ControlStudyRow* find_row(const ControlStudy& study, const ControlColumn& 
 /// the run did not finish.
 std::string our_cell(const ControlStudyRow* r) {
   if (r == nullptr) return "";
-  if (r->status == "not run") return "not run";
   std::string out = r->task == "track" ? fixed(r->mean_error_pct_L, 3) + " %"
                                        : std::to_string(r->successes) + "/" +
                                              std::to_string(r->episodes);

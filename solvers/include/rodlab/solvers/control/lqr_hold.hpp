@@ -8,6 +8,9 @@
 //
 // (the tip's deviation after each step, a small state weight eps that makes every mode
 // detectable, the input effort w), and the plant is driven by u = clamp(u* - K (x - x*)).
+// Tracking moves the reference along the trajectory's quasi-static equilibria: u_ref from the
+// inverse statics of the coming target, x_ref = x* + S (u_ref - u*) the linearised plant's
+// steady state under it, S = (I - A)^-1 B, with the gain of the first target.
 #include <string>
 
 #include <Eigen/Core>
@@ -28,10 +31,13 @@ struct HoldGain {
   Eigen::VectorXd x_star, u_star;  ///< the equilibrium (tangent coordinates) and its inputs
   Vector3 tip_star = Vector3::Zero();
   Eigen::MatrixXd K;  ///< du = -K dx
+  Eigen::MatrixXd steady;  ///< S = dx*/du* = (I - A)^-1 B, the equilibrium's input sensitivity
   double spectral_radius = 0.0;  ///< of the linear closed loop A - B K (< 1: stable)
 
   /// u* - K (x - x*) clamped to the plant's limits.
-  Eigen::VectorXd control(const Plant& plant) const;
+  Eigen::VectorXd control(const Plant& plant) const { return control(plant, u_star); }
+  /// u_ref - K (x - x_ref), x_ref = x* + S (u_ref - u*), clamped to the limits.
+  Eigen::VectorXd control(const Plant& plant, const Eigen::VectorXd& u_ref) const;
 };
 
 /// The gain about the equilibrium of `scene` under u_star on the plant options' scheme (the
