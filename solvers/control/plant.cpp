@@ -119,6 +119,7 @@ dynamics::StepStatus Plant::advance() {
 
 dynamics::StepStatus Plant::advance_linearised(Eigen::MatrixXd& A, Eigen::MatrixXd& B,
                                                Eigen::MatrixXd& C, Eigen::MatrixXd& D) {
+  check_deadline();  // as advance()
   dynamics::StepStatus total;
   for (int k = 0; k < substeps_; ++k) {
     // A = A_k ... A_1, B = A_k (... (A_2 B_1 + B_2) ...) + B_k
