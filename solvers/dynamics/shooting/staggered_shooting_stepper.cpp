@@ -483,7 +483,8 @@ class StaggeredShootingStepper final : public Stepper {
     const SO3& R_tip = march_[ns].g.rotation();
     for (int i = 0; i < 3; ++i) {
       const Vector3 d = Vector3::Unit(i) * 1e-5;
-      W_rho.col(i) = (P_.tip_load(R_tip * SO3::exp(d), t_u_) - P_.tip_load(R_tip * SO3::exp(-d), t_u_)) / 2e-5;
+      W_rho.col(i) =
+          (P_.tip_load(R_tip * SO3::exp(d), t_u_) - P_.tip_load(R_tip * SO3::exp(-d), t_u_)) / 2e-5;
     }
     lin_R_ = (lin_S_.topRows(6) - W_rho * lin_S_.bottomRows(3)).array().colwise() / scale_.array();
     const Eigen::PartialPivLU<Matrix6> r_lambda(Matrix6(lin_R_.leftCols(6)));
