@@ -13,7 +13,6 @@
 #include "rodlab/rod/characteristics.hpp"
 #include "rodlab/scene/trajectory.hpp"
 #include "rodlab/solvers/dynamics/dynamic_workspace.hpp"
-#include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/common/deadline.hpp"
 #include "rodlab/solvers/control/ilqr.hpp"
 #include "rodlab/solvers/control/inverse_statics.hpp"
@@ -73,12 +72,11 @@ std::vector<Vector3> dynamic_targets(const scene::Scene& scene, const ControlRun
   w.solve.max_iterations = std::max(o.solver.max_iterations, PlantOptions::kShotsPerStep);
   w.holds = std::max(kDynamicHolds, c.target_count);
   const auto problem = dynamics::DynamicProblem::from_scene(scene);
-  // The plant's step (plant.cpp): dynamics.dt when set, else one step per control step, but the
-  // explicit variational scheme below its stability limit (dt_c itself is far above it).
-  w.solve.dt = o.solver.dt > 0.0 ? o.solver.dt
-               : o.solver.scheme == "variational"
-                   ? dynamics::auto_time_step(problem, "variational", o.solver.nodes)
-                   : c.dt_control;
+  // the plant's step (for variational below its stability limit: dt_c is far above it)
+  PlantOptions po;
+  po.solver = o.solver;
+  po.dt_control = c.dt_control;
+  w.solve.dt = requested_step(problem, po);
   const auto ch = rod::characteristics(problem.model(), o.solver.nodes, rod::TipSupport::free);
   w.hold_time = std::max(c.dt_control, 1.0 / ch.first_bending_frequency_hz);
   w.outputs_per_hold = 10;

@@ -23,15 +23,19 @@ constexpr double kBoundSlack = 1e-12;
 constexpr double kStepRounding = 1e-9;
 
 /// The number of equal scheme steps in one control step of length dt_c.
-int substeps_of(const dynamics::DynamicProblem& problem, const PlantOptions& o, SchemeId id) {
-  double dt = o.solver.dt;
-  if (!(dt > 0.0))
-    dt = id == SchemeId::variational ? dynamics::auto_time_step(problem, "variational", o.solver.nodes)
-                                     : o.dt_control;
-  return std::max(1, static_cast<int>(std::ceil(o.dt_control / dt - kStepRounding)));
+int substeps_of(const dynamics::DynamicProblem& problem, const PlantOptions& o) {
+  return std::max(1, static_cast<int>(
+                         std::ceil(o.dt_control / requested_step(problem, o) - kStepRounding)));
 }
 
 }  // namespace
+
+double requested_step(const dynamics::DynamicProblem& problem, const PlantOptions& o) {
+  if (o.solver.dt > 0.0) return o.solver.dt;
+  return scheme_for(o.solver.scheme, Problem::dynamics).id == SchemeId::variational
+             ? dynamics::auto_time_step(problem, "variational", o.solver.nodes)
+             : o.dt_control;
+}
 
 Plant::Plant(const scene::Scene& scene, const PlantOptions& options)
     : dt_control_(options.dt_control) {
@@ -59,7 +63,7 @@ Plant::Plant(const scene::Scene& scene, const PlantOptions& options)
     u_[k] = std::clamp(inputs[k].value->at(0.0), lower_[k], upper_[k]);
   }
 
-  substeps_ = substeps_of(*problem_, options, scheme.id);
+  substeps_ = substeps_of(*problem_, options);
   dt_ = dt_control_ / substeps_;
   if (scheme.id == SchemeId::implicit_midpoint || scheme.id == SchemeId::bdf_alpha) {
     const std::string why = dynamics::single_shooting_step_problem(
@@ -98,13 +102,14 @@ void Plant::set_input(const Eigen::Ref<const Eigen::VectorXd>& u) {
   u_ = u;
 }
 
-dynamics::StepStatus Plant::advance() {
+template <class Substep>
+dynamics::StepStatus Plant::each_substep(Substep substep) {
   // The run's wall-time guard (common/deadline.hpp, --max-wall-time) once per control step: the
   // variational steps do not check it themselves, and a controller's rollouts are many steps.
   check_deadline();
   dynamics::StepStatus total;
   for (int k = 0; k < substeps_; ++k) {
-    const dynamics::StepStatus s = stepper_->step(t_, dt_);
+    const dynamics::StepStatus s = substep(k);
     total.iterations += s.iterations;
     if (!s.ok) {
       total.ok = false;
@@ -117,27 +122,23 @@ dynamics::StepStatus Plant::advance() {
   return total;
 }
 
+dynamics::StepStatus Plant::advance() {
+  return each_substep([this](int) { return stepper_->step(t_, dt_); });
+}
+
 dynamics::StepStatus Plant::advance_linearised(Eigen::MatrixXd& A, Eigen::MatrixXd& B,
                                                Eigen::MatrixXd& C, Eigen::MatrixXd& D) {
-  check_deadline();  // as advance()
-  dynamics::StepStatus total;
-  for (int k = 0; k < substeps_; ++k) {
+  const dynamics::StepStatus total = each_substep([&](int k) {
+    if (k == 0) return stepper_->step_linearised(t_, dt_, A, B);
     // A = A_k ... A_1, B = A_k (... (A_2 B_1 + B_2) ...) + B_k
-    const dynamics::StepStatus s =
-        stepper_->step_linearised(t_, dt_, k == 0 ? A : sub_A_, k == 0 ? B : sub_B_);
-    total.iterations += s.iterations;
-    if (!s.ok) {
-      total.ok = false;
-      total.reason = s.reason;
-      total.reached = s.reached;
-      return total;
-    }
-    if (k > 0) {
+    const dynamics::StepStatus s = stepper_->step_linearised(t_, dt_, sub_A_, sub_B_);
+    if (s.ok) {
       A = sub_A_ * A;
       B = sub_A_ * B + sub_B_;
     }
-    t_ += dt_;
-  }
+    return s;
+  });
+  if (!total.ok) return total;
   RODLAB_THROW_UNLESS(B.cols() == input_count(), "control: the linearised step has {} inputs, the plant {}",
                       B.cols(), input_count());
   stepper_->tip_jacobian(tip_J_);

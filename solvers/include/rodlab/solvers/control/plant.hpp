@@ -38,6 +38,11 @@ struct PlantOptions {
   double dt_control = 0.05;  ///< [s], > 0
 };
 
+/// The scheme step a plant asks for before it fits a whole number of them into dt_c:
+/// solver.dt when set, else the stable step (`dt: auto`) for `variational`, else dt_c (one
+/// implicit step per control step). Throws std::invalid_argument for an unknown scheme.
+double requested_step(const dynamics::DynamicProblem& problem, const PlantOptions& options);
+
 /// A saved plant state (Plant::snapshot); opaque to controllers.
 struct PlantSnapshot {
   std::unique_ptr<dynamics::Stepper> stepper;
@@ -104,6 +109,11 @@ class Plant {
   const Eigen::VectorXd& state_scale() const { return state_scale_; }
 
  private:
+  /// Runs substep(k) for k = 0..substeps-1 (each returning its StepStatus), advancing the time;
+  /// stops at the first failure.
+  template <class Substep>
+  dynamics::StepStatus each_substep(Substep substep);
+
   std::unique_ptr<dynamics::DynamicProblem> problem_;  // the steppers refer to it: fixed address
   std::unique_ptr<dynamics::Stepper> stepper_;
   Eigen::VectorXd lower_, upper_, u_, state_scale_;
