@@ -22,16 +22,6 @@ namespace {
 /// --full: the wall-time limit of one run [s] (the variational and iLQR runs are slow).
 constexpr double kFullRunLimit = 120.0;
 
-/// Table 4.1, NLSQ Implicit: the mean middle-circle error [% of L] at dt_c (0: no thesis value).
-double thesis_track_error(double dt_control) {
-  const struct {
-    double dt, error;
-  } table[] = {{0.01, 3.45}, {0.05, 4.36}, {0.1, 6.90}};
-  for (const auto& t : table)
-    if (std::abs(t.dt - dt_control) < 1e-12) return t.error;
-  return 0.0;
-}
-
 std::string run_name(const study::ControlStudyRow& r) {
   return "Table 4.1, " + r.column.name + ", " + r.task +
          (r.horizon > 0 ? ", H = " + std::to_string(r.horizon) : std::string());
@@ -46,8 +36,8 @@ void table41_check(const study::ControlStudyRow& r, std::vector<Check>& out) {
                              io::format_number(r.real_time_ratio_mean) + " mean" +
                              (r.reason.empty() ? "" : "; " + r.reason);
   if (r.task == "track") {
-    const double bound = thesis_track_error(r.column.dt_control);
-    if (bound <= 0.0) return;
+    const double bound = study::thesis_track_error(r.column);
+    if (std::isnan(bound)) return;
     Check c = upper_bound_check(run_name(r) + ": mean tracking error [% of L]",
                                 r.status == "done" ? r.mean_error_pct_L : double(NAN), bound,
                                 "Table 4.1, NLSQ Implicit at dt = " +

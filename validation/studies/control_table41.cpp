@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "rodlab/io/text_format.hpp"
@@ -123,6 +124,11 @@ std::string horizon_table(const ControlStudy& study, const std::vector<ControlCo
 }
 
 }  // namespace
+
+double thesis_track_error(const ControlColumn& column) {
+  const ThesisColumn* t = thesis_column(column);
+  return t == nullptr ? std::nan("") : std::strtod(t->trajectory, nullptr);  // "3.45 %"
+}
 
 std::string control_table_markdown(const ControlStudy& study) {
   const auto& s = study.settings;
