@@ -31,6 +31,11 @@ constexpr OptionSpec kIterationsOption{
     "--iterations", "K",
     "solver iterations per control step (nlsq-mpc, ilqr), integer >= 1; 1: the real-time "
     "iteration; default: control.iterations, else the controller's"};
+constexpr OptionSpec kModelSchemeOption{
+    "--model-scheme", "NAME",
+    "the scheme the controller predicts with, taking over the plant's state every control step: "
+    "implicit-midpoint | implicit-midpoint-collocation | variational; default: "
+    "control.model_scheme, else the plant's (--scheme)"};
 constexpr OptionSpec kDtControlOption{"--dt-control", "X",
                                       "control step [s] > 0; default: control.dt_control"};
 constexpr OptionSpec kSeedOption{"--seed", "K", "seed of drawn targets, integer >= 0; default: control.seed"};
@@ -46,6 +51,8 @@ scene::Control read_control(OptionReader& reader, const scene::Scene& scene) {
                                : scene::ControlTask::track;
   if (const auto h = reader.integer(kHorizonOption.name, 1)) c.horizon = *h;
   if (const auto k = reader.integer(kIterationsOption.name, 1)) c.iterations = *k;
+  if (const auto m = reader.choice(kModelSchemeOption.name, scene::kModelSchemes))
+    c.model_scheme = *m;
   if (const auto dt = reader.positive(kDtControlOption.name)) c.dt_control = *dt;
   if (const auto seed = reader.integer(kSeedOption.name, 0)) c.seed = static_cast<unsigned>(*seed);
   if (const auto k = reader.integer(kTargetsOption.name, 1)) {
@@ -75,6 +82,7 @@ std::string summarize(const result::ControlResult& r) {
                                std::to_string(r.nodes) + ", dt_control " +
                                io::format_number(r.dt_control) + " s, horizon " +
                                std::to_string(r.horizon)});
+  if (r.model_scheme) t.add_row({"model", "predicts with " + *r.model_scheme});
   t.add_row({"status", r.converged ? std::string("converged") : "NOT converged: " + r.reason.value_or("")});
   int ok = 0;
   for (const auto& e : r.episodes) ok += e.success ? 1 : 0;
@@ -109,10 +117,10 @@ int run(const Invocation& inv) {
 }  // namespace
 
 const Command& control_command() {
-  static const std::array<OptionSpec, 14> options{
-      kControllerOption, kTaskOption,    kHorizonOption, kIterationsOption, kDtControlOption,
-      kSchemeOption,     kNodesOption,   kTolOption,     kGridOption,       kSeedOption,
-      kTargetsOption,    kOutFileOption, kSetOption,     kMaxWallTimeOption};
+  static const std::array<OptionSpec, 15> options{
+      kControllerOption, kTaskOption,    kHorizonOption,     kIterationsOption, kDtControlOption,
+      kSchemeOption,     kModelSchemeOption, kNodesOption,   kTolOption,        kGridOption,
+      kSeedOption,       kTargetsOption, kOutFileOption,     kSetOption,        kMaxWallTimeOption};
   static const Command command{
       "control",
       "SCENE [--controller NAME] [--task reach|hold|track] [options]",
@@ -123,7 +131,8 @@ const Command& control_command() {
       "steps in a row) or track (control.trajectory). Targets are control.targets, else\n"
       "--targets K (or control.target_count) drawn with --seed from the static workspace.\n"
       "nlsq-mpc plans --horizon steps of --dt-control on a dynamics scheme (--scheme, else\n"
-      "dynamics.scheme, else implicit-midpoint); ilqr plans the same horizon by iterative\n"
+      "dynamics.scheme, else implicit-midpoint), or with --model-scheme on a model that takes\n"
+      "over the plant's state every control step; ilqr plans the same horizon by iterative\n"
       "LQR with input limits; lqr (reach, hold) regulates about the\n"
       "equilibrium of the inverse statics' inputs for each target; quasi-static solves the\n"
       "inverse statics (chebyshev). The result (rodlab.control-result/1) is printed as a summary and, with\n"

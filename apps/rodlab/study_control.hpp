@@ -13,7 +13,9 @@ namespace rodlab::cli {
 inline constexpr std::array<OptionSpec, 8> kStudyControlOptions{
     OptionSpec{"--controllers", "A,B,...",
                "control: Table 4.1's columns, nlsq-implicit (one per --dt-control), "
-               "nlsq-kirchhoff, lqr, ilqr (default: all)"},
+               "nlsq-kirchhoff (variational plant, implicit-midpoint model), lqr, ilqr (default: "
+               "these four); nlsq-kirchhoff-variational (the thesis': variational also as the "
+               "model, slow)"},
     OptionSpec{"--horizons", "H1,H2,...",
                "control: horizons, integers >= 1 (default 1,2,5,10,15,20; lqr has none)"},
     OptionSpec{"--dt-control", "X1,X2,...",

@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 
@@ -280,13 +281,29 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
   po.dt_control = c.dt_control;
   Plant plant(scene, po);
   const PlantSnapshot initial = plant.snapshot();
+  // The controller's model: the plant itself, or a plant of control.model_scheme that takes
+  // over the plant's state before every decision (one scheme step per control step).
+  PlantOptions mo = po;
+  std::optional<Plant> own_model;
+  if (c.model_scheme && *c.model_scheme != po.solver.scheme) {
+    RODLAB_THROW_UNLESS(std::ranges::find(scene::kModelSchemes, *c.model_scheme) !=
+                            std::end(scene::kModelSchemes),
+                        "control.model_scheme: '{}' cannot take over another scheme's state (its "
+                        "tangent coordinates are not its whole state); use implicit-midpoint, "
+                        "implicit-midpoint-collocation or variational",
+                        *c.model_scheme);
+    mo.solver.scheme = *c.model_scheme;
+    mo.solver.dt = 0.0;
+    own_model.emplace(scene, mo);
+  }
+  Plant& model = own_model ? *own_model : plant;
   std::unique_ptr<DynamicController> controller;
   if (o.controller == "lqr")
-    controller = std::make_unique<LqrController>(scene, po, c);
+    controller = std::make_unique<LqrController>(scene, mo, c);
   else if (o.controller == "ilqr")
-    controller = std::make_unique<IlqrController>(plant, c);
+    controller = std::make_unique<IlqrController>(model, c);
   else
-    controller = std::make_unique<MpcController>(plant, c);
+    controller = std::make_unique<MpcController>(model, c);
   const double L = plant.length(), threshold = c.threshold * L, dt = c.dt_control;
   const bool track = c.task == scene::ControlTask::track;
   const int episodes = track ? 1 : static_cast<int>(out.targets.points.size());
@@ -302,7 +319,8 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
     const std::size_t first = out.series.t.size();
     int below = 0;
     auto t0 = Clock::now();  // the episode's set-up counts in its first step
-    if (std::string why = controller->start(plant, episode.target); !why.empty()) {
+    if (own_model) own_model->set_state_of(plant);
+    if (std::string why = controller->start(model, episode.target); !why.empty()) {
       episode.reason = why;
       out.episodes.push_back(episode);
       continue;
@@ -311,7 +329,8 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
       const double t = (k + 1) * dt;  // the step ends at t
       for (std::size_t i = 0; i < horizon.size(); ++i) horizon[i] = target_at(t + i * dt);
       if (k > 0) t0 = Clock::now();
-      const Decision d = controller->decide(plant, horizon);
+      if (own_model && k > 0) own_model->set_state_of(plant);
+      const Decision d = controller->decide(model, horizon);
       const double solve_time = seconds_since(t0);
       if (!d.failure.empty()) {
         out.converged = false;
@@ -409,6 +428,8 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
   out.controller = options.controller;
   out.task = task_name(c.task);
   out.scheme = dynamic ? options.solver.scheme : InverseStaticsOptions{}.statics.scheme;
+  if (dynamic && c.model_scheme && *c.model_scheme != options.solver.scheme)
+    out.model_scheme = c.model_scheme;
   out.nodes = options.solver.nodes;
   out.dt_control = c.dt_control;
   out.horizon = mpc || options.controller == "ilqr" ? c.horizon : 0;

@@ -147,6 +147,21 @@ dynamics::StepStatus Plant::advance_linearised(Eigen::MatrixXd& A, Eigen::Matrix
   return total;
 }
 
+void Plant::set_state_of(const Plant& other) {
+  RODLAB_THROW_UNLESS(other.state_size() == state_size(),
+                      "control: the model's state has {} tangent coordinates, the plant's {} "
+                      "(the same rod model and nodes are needed)",
+                      state_size(), other.state_size());
+  x_other_.resize(state_size());  // no-ops after the first call
+  x_own_.resize(state_size());
+  other.read_state(std::span<double>(x_other_.data(), x_other_.size()));
+  read_state(std::span<double>(x_own_.data(), x_own_.size()));
+  x_other_ -= x_own_;
+  add_state(std::span<const double>(x_other_.data(), x_other_.size()));
+  t_ = other.time();
+  set_input(other.input());
+}
+
 PlantSnapshot Plant::snapshot() const { return {stepper_->clone(), t_, u_}; }
 
 void Plant::save(PlantSnapshot& s) const {

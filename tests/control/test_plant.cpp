@@ -165,6 +165,40 @@ BOOST_AUTO_TEST_CASE(tangent_coordinates_are_strains_and_velocities) {
   }
 }
 
+// A controller's model of another scheme takes over the plant's state (set_state_of; the
+// model-plant split of control.model_scheme): after three control steps of the plant under a
+// 0.4 N / 0.1 N pull, the model's tangent coordinates, tip, time and input are the plant's.
+// Reference: the plant's own; tolerance: the rounding of the strains read back from poses
+// (collocation, as in tangent_coordinates_are_strains_and_velocities: 8 eps / ds ~ 1.6e-13)
+// and of the tip integrated from them (1e-14 m: 45 eps L). Plants of different rod models (Cosserat: 6 strains per
+// segment, Kirchhoff: 3) are refused.
+BOOST_AUTO_TEST_CASE(a_model_of_another_scheme_takes_over_the_plant_state) {
+  const double L = 0.1;
+  for (const std::string model : {"cosserat", "kirchhoff"}) {
+    for (const std::string plant_scheme : {"variational", "implicit-midpoint"}) {
+      c::Plant plant = make({plant_scheme, model, ""});
+      plant.set_input(input(0.4, 0.1, 0, 0));
+      for (int k = 0; k < 3; ++k) BOOST_TEST_REQUIRE(plant.advance().ok);
+      const Eigen::VectorXd x = state(plant);
+      BOOST_TEST_REQUIRE(x.cwiseAbs().maxCoeff() > 1.0);  // a bent, moving rod
+      for (const std::string_view model_scheme : rodlab::scene::kModelSchemes) {
+        BOOST_TEST_CONTEXT(model << ": plant " << plant_scheme << ", model " << model_scheme) {
+          c::Plant m = make({std::string(model_scheme), model, ""});
+          m.set_state_of(plant);
+          const double rounding = 8.0 * std::numeric_limits<double>::epsilon() / (L / 9);
+          BOOST_TEST((state(m) - x).cwiseAbs().maxCoeff() < rounding);
+          BOOST_TEST((m.tip() - plant.tip()).norm() < 1e-14);  // 2.5e-15 m measured
+          BOOST_TEST(m.time() == plant.time());
+          BOOST_TEST((m.input() - plant.input()).norm() == 0.0);
+          BOOST_TEST_REQUIRE(m.advance().ok);  // and predicts from there
+        }
+      }
+    }
+  }
+  c::Plant cosserat = make(kCases[2]), kirchhoff = make(kCases[3]);
+  BOOST_CHECK_THROW(cosserat.set_state_of(kirchhoff), std::invalid_argument);
+}
+
 // Inputs outside their limits are refused (a controller bug, not a clip); a scene without
 // limits, a clamped tip or a scheme without control support is refused up front.
 BOOST_AUTO_TEST_CASE(bounds_and_unsupported_set_ups_are_refused) {

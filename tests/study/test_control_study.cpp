@@ -1,6 +1,8 @@
 #define BOOST_TEST_MODULE control_study
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
+
 // The Table 4.1 study (validation/studies/control_study.hpp) on a tiny configuration of the
 // thesis' cable robot (scenes/control-cable.yaml at N = 10, H = 1, dt_c = 0.05 s, 2 targets):
 // one row per column, task and horizon; each row's counts and errors are the run's own; a run
@@ -118,13 +120,14 @@ BOOST_AUTO_TEST_CASE(rows_are_their_runs) {
 
 // A run over its wall-time limit is reported as timed out, with the steps before it, never
 // hidden: the table says so. On implicit-midpoint (its Newton checks the limit) and on the
-// Kirchhoff rod's variational scheme (checked between control steps).
+// Kirchhoff rod's variational scheme (checked between control steps), predicted by
+// implicit-midpoint or by itself (the thesis' setup).
 BOOST_AUTO_TEST_CASE(a_timed_out_run_is_reported) {
-  auto s = tiny({"nlsq-implicit", "nlsq-kirchhoff"}, {"track"});
+  auto s = tiny({"nlsq-implicit", "nlsq-kirchhoff", "nlsq-kirchhoff-variational"}, {"track"});
   s.horizons = {5};
   s.max_wall_time = 0.2;  // the whole lap takes seconds
   const study::ControlStudy st = study::run_control_study(s);
-  BOOST_TEST_REQUIRE(st.rows.size() == 2u);
+  BOOST_TEST_REQUIRE(st.rows.size() == 3u);
   for (const auto& r : st.rows) {
     BOOST_TEST_CONTEXT(r.column.name) {
       BOOST_TEST(r.status == "timed out");
@@ -159,10 +162,19 @@ BOOST_AUTO_TEST_CASE(columns) {
   BOOST_TEST(c[0].name == "nlsq-implicit dt=0.01");
   BOOST_TEST(c[1].name == "nlsq-implicit dt=0.1");
   BOOST_TEST(c[2].scheme == "variational");
+  BOOST_TEST(c[2].model_scheme == "implicit-midpoint");  // the model-plant split
   BOOST_TEST(c[2].kirchhoff);
   BOOST_TEST(c[3].controller == "lqr");
   BOOST_TEST(c[4].controller == "ilqr");
   BOOST_TEST(c[4].dt_control == study::kSingleColumnDtControl);
+  s.columns = {"nlsq-kirchhoff-variational"};  // the thesis' setup: the plant is the model
+  const auto thesis = study::control_columns(s);
+  BOOST_TEST_REQUIRE(thesis.size() == 1u);
+  BOOST_TEST(thesis[0].scheme == "variational");
+  BOOST_TEST(thesis[0].model_scheme.empty());
+  BOOST_TEST(thesis[0].kirchhoff);
+  const std::vector<std::string> defaults = study::ControlStudySettings{}.columns;
+  BOOST_TEST(std::ranges::count(defaults, "nlsq-kirchhoff-variational") == 0);  // not by default
   s.columns = {"pid"};
   BOOST_CHECK_THROW(study::control_columns(s), std::invalid_argument);
 }

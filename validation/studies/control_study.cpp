@@ -71,6 +71,8 @@ scene::Control run_control_settings(const scene::Scene& scene, const ControlStud
   control.task = task_of(task);
   control.horizon = std::max(1, horizon);
   control.dt_control = c.dt_control;
+  control.model_scheme.reset();
+  if (!c.model_scheme.empty()) control.model_scheme = c.model_scheme;
   control.threshold = kThesisThreshold;
   control.max_steps = kThesisMaxSteps;
   control.seed = s.seed;
@@ -146,7 +148,7 @@ std::vector<ControlColumn> control_columns(const ControlStudySettings& s) {
   for (const auto& kind : s.columns)
     RODLAB_THROW_UNLESS(is_one_of(kind, kControlColumnKinds),
                         "--controllers: unknown column '{}' (nlsq-implicit, nlsq-kirchhoff, lqr, "
-                        "ilqr)",
+                        "ilqr, nlsq-kirchhoff-variational)",
                         kind);
   // Table 4.1's order, whatever the order asked for.
   for (const std::string kind : kControlColumnKinds) {
@@ -154,14 +156,16 @@ std::vector<ControlColumn> control_columns(const ControlStudySettings& s) {
     if (kind == "nlsq-implicit") {
       for (const double dt : s.dt_controls)
         out.push_back({"nlsq-implicit dt=" + number(dt), kind, "nlsq-mpc", "implicit-midpoint",
-                       false, dt});
+                       "", false, dt});
       continue;
     }
     const double dt = kSingleColumnDtControl;
     if (kind == "nlsq-kirchhoff")
-      out.push_back({kind, kind, "nlsq-mpc", "variational", true, dt});
+      out.push_back({kind, kind, "nlsq-mpc", "variational", "implicit-midpoint", true, dt});
+    else if (kind == "nlsq-kirchhoff-variational")
+      out.push_back({kind, kind, "nlsq-mpc", "variational", "", true, dt});
     else
-      out.push_back({kind, kind, kind, "implicit-midpoint", false, dt});
+      out.push_back({kind, kind, kind, "implicit-midpoint", "", false, dt});
   }
   return out;
 }
@@ -189,7 +193,7 @@ ControlStudy run_control_study(const ControlStudySettings& s,
 namespace {
 
 const char* kCsvHeader =
-    "column,controller,scheme,kirchhoff,dt_control,task,horizon,status,successes,episodes,"
+    "column,controller,scheme,model_scheme,kirchhoff,dt_control,task,horizon,status,successes,episodes,"
     "mean_error_pct_L,final_error_pct_L,min_error_pct_L,real_time_ratio_mean,real_time_ratio_max,wall_time_s,"
     "converged,reason,run_file\n";
 
@@ -199,7 +203,7 @@ std::string control_table_csv(const ControlStudy& study) {
   std::string out = kCsvHeader;
   for (const auto& r : study.rows)
     out += csv_text(r.column.name) + "," + r.column.controller + "," + r.column.scheme + "," +
-           (r.column.kirchhoff ? "1" : "0") + "," + csv_number(r.column.dt_control) + "," +
+           r.column.model_scheme + "," + (r.column.kirchhoff ? "1" : "0") + "," + csv_number(r.column.dt_control) + "," +
            r.task + "," + std::to_string(r.horizon) + "," + csv_text(r.status) + "," +
            std::to_string(r.successes) + "," + std::to_string(r.episodes) + "," +
            csv_number(r.mean_error_pct_L) + "," + csv_number(r.final_error_pct_L) + "," + csv_number(r.min_error_pct_L) + "," +
@@ -230,6 +234,8 @@ Json control_study_json(const ControlStudy& study) {
     rows.push_back({{"column", r.column.name},
                     {"controller", r.column.controller},
                     {"scheme", r.column.scheme},
+                    {"model_scheme", r.column.model_scheme.empty() ? Json(nullptr)
+                                                                   : Json(r.column.model_scheme)},
                     {"kirchhoff", r.column.kirchhoff},
                     {"dt_control", r.column.dt_control},
                     {"task", r.task},

@@ -125,7 +125,8 @@ void check_actuator_limits(Checker& c, const Field& control, const Field& actuat
 scene::Control read_control(Checker& c, const Field& f, const Field& actuators,
                             const std::vector<scene::Actuator>& read) {
   scene::Control control;
-  if (!c.keys(f, {"task", "targets", "trajectory", "horizon", "iterations", "dt_control",
+  if (!c.keys(f, {"task", "targets", "trajectory", "horizon", "iterations", "model_scheme",
+                  "dt_control",
                   "threshold", "max_steps", "hold_steps", "weights", "seed", "target_count"}))
     return control;
   const auto given = c.exactly_one(f, {"targets", "trajectory"}, false);
@@ -136,6 +137,8 @@ scene::Control read_control(Checker& c, const Field& f, const Field& actuators,
 
   if (auto h = c.integer(c.child(f, "horizon"), 1)) control.horizon = *h;
   if (auto k = c.integer(c.child(f, "iterations"), 1)) control.iterations = *k;
+  if (auto k = c.choice(c.child(f, "model_scheme"), scene::kModelSchemes))
+    control.model_scheme = std::string(scene::kModelSchemes[*k]);
   if (auto dt = c.number(c.child(f, "dt_control"), Range::positive())) control.dt_control = *dt;
   if (auto th = c.number(c.child(f, "threshold"), Range::positive())) control.threshold = *th;
   read_steps(c, f, control);

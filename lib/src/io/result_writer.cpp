@@ -337,6 +337,7 @@ std::string to_json(const result::ControlResult& r) {
             {"controller", r.controller},
             {"task", r.task},
             {"scheme", r.scheme},
+            {"model_scheme", text_or_null(r.model_scheme)},
             {"nodes", r.nodes},
             {"dt_control", r.dt_control},
             {"horizon", r.horizon},

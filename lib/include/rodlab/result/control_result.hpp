@@ -59,6 +59,8 @@ struct ControlSummary {
 
 struct ControlResult {
   std::string scene, controller, task, scheme;
+  /// extension: the scheme the controller predicted with when not the plant's (control.model_scheme)
+  std::optional<std::string> model_scheme;
   int nodes = 0;
   double dt_control = 0.0;
   int horizon = 0;

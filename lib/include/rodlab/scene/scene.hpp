@@ -3,6 +3,7 @@
 // match the YAML keys. Loading and checking live in rodlab/io/scene_loader.hpp.
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -169,6 +170,12 @@ struct ControlWeights {
 };
 
 /// control: the task and settings of `rodlab control`; command-line options win.
+/// The schemes a controller can predict with for a plant of another scheme (control.model_scheme):
+/// those whose tangent coordinates are their whole state (bdf-alpha's history x_(i-1), x_dot_i is
+/// not; ida has no plant); docs/control.md "Model and plant".
+inline constexpr std::string_view kModelSchemes[] = {"implicit-midpoint",
+                                                     "implicit-midpoint-collocation", "variational"};
+
 struct Control {
   ControlTask task = ControlTask::reach;  ///< default: track with a trajectory, else reach
   std::vector<Vector3> targets;           ///< [m], world frame; empty: drawn from the workspace
@@ -178,6 +185,10 @@ struct Control {
   /// Marquardt iterations per plan; ilqr: iLQR iterations); empty: the controller's default.
   /// 1 is the real-time iteration: one iteration per step, warm-started from the shifted plan.
   std::optional<int> iterations;
+  /// The dynamics scheme the controller predicts with (its model), when it differs from the
+  /// plant's (--scheme): the model takes the plant's state through their tangent coordinates at
+  /// every control step (docs/control.md "Model and plant"); empty: the plant's own scheme.
+  std::optional<std::string> model_scheme;
   double dt_control = 0.05;               ///< [s] between control updates
   double threshold = 0.05;                ///< success: tip error below threshold * L
   int max_steps = 100;                    ///< control steps per reach or hold episode

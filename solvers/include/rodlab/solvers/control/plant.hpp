@@ -95,6 +95,13 @@ class Plant {
   /// Makes `s` the current state (time and input included), without allocating.
   void restore(const PlantSnapshot& s);
 
+  /// Makes this plant's state that of `other`, a plant of another scheme on the same scene and
+  /// grid, through their tangent coordinates (time and input included): a controller's model
+  /// taking over the plant's state before it predicts (docs/control.md "Model and plant"). This
+  /// plant's scheme must keep its whole state in them (not bdf-alpha's history). Throws
+  /// std::invalid_argument when the tangent coordinates differ in size. Does not allocate.
+  void set_state_of(const Plant& other);
+
   /// Starts the next control step's solves from those of `after`, a snapshot taken after the
   /// same step from a nearby state (Stepper::warm_start_from; finite differences of a step).
   void warm_start_from(const PlantSnapshot& after) { stepper_->warm_start_from(*after.stepper); }
@@ -118,6 +125,7 @@ class Plant {
   std::unique_ptr<dynamics::Stepper> stepper_;
   Eigen::VectorXd lower_, upper_, u_, state_scale_;
   Eigen::MatrixXd sub_A_, sub_B_, tip_J_;  ///< advance_linearised()'s workspace
+  Eigen::VectorXd x_other_, x_own_;         ///< set_state_of()'s workspace
   double dt_control_ = 0.0, dt_ = 0.0, t_ = 0.0;
   int substeps_ = 1;
 };
