@@ -2,6 +2,8 @@
 
 #include "rodlab/io/text_format.hpp"
 #include "rodlab/rod/section.hpp"
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/schemes.hpp"
 
 #include "common_options.hpp"
@@ -224,7 +226,8 @@ ReportSection matrices_section(const rod::Characteristics& c, bool viscous) {
   return s;
 }
 
-ReportSection time_section(const rod::Characteristics& c, const std::string& nodes_from) {
+ReportSection time_section(const scene::Scene& scene, const rod::Characteristics& c,
+                           const std::string& nodes_from) {
   const double k = c.thesis_safety_factor;
   ReportSection s{
       "time_scales",
@@ -240,6 +243,19 @@ ReportSection time_section(const rod::Characteristics& c, const std::string& nod
   s.items.push_back({"dt_thesis", "explicit time step (3.44)", io::format_number(k) + " ds sqrt(rho/E)",
                      c.dt_thesis, "s"});
   s.items.push_back({"thesis_safety_factor", "safety factor (thesis)", "k", k, ""});
+  // What `dt: auto` takes (time_step.hpp): (3.44) ignores viscosity and drag, whose relaxation
+  // can set a far smaller stable step for `variational` (docs/dynamics.md "Stability").
+  try {
+    namespace d = solvers::dynamics;
+    const auto problem = d::DynamicProblem::from_scene(scene);
+    s.items.push_back({"dt_auto_variational", "variational step (dt: auto)",
+                       io::format_number(d::kVariationalSafety) +
+                           " x stable step (waves, viscosity, drag)",
+                       d::auto_time_step(problem, "variational", c.nodes), "s"});
+    s.items.push_back({"dt_auto_implicit", "implicit step (dt: auto)", "first bending period / 10",
+                       d::auto_time_step(problem, "implicit-midpoint", c.nodes), "s"});
+  } catch (const std::exception&) {  // a scene the dynamics cannot take: `rodlab dynamic` says why
+  }
   return s;
 }
 
@@ -327,7 +343,7 @@ ReportSection solver_section(const scene::Scene& scene) {
     s.items.push_back({"dt", "dynamics.dt", "", *d.dt, "s"});
   else
     s.items.push_back(
-        {"dt", "dynamics.dt", "", std::string("auto (the explicit time step (3.44) above)"), ""});
+        {"dt", "dynamics.dt", "", std::string("auto (the steps `dt: auto` above)"), ""});
   s.items.push_back({"initial", "dynamics.initial", "",
                      std::string(d.initial == scene::Initial::straight ? "straight" : "static"),
                      ""});
@@ -343,7 +359,7 @@ Report check_report(const scene::Scene& scene, const rod::Characteristics& c,
   const bool viscous = scene.rod.material.viscosity > 0.0;
   return {kCheckSchema,
           {scene_section(scene), section_section(scene, c), material_section(scene),
-           matrices_section(c, viscous), time_section(c, nodes_from), frequency_section(scene, c),
+           matrices_section(c, viscous), time_section(scene, c, nodes_from), frequency_section(scene, c),
            adequacy_section(scene, c), loads_section(scene), solver_section(scene)}};
 }
 

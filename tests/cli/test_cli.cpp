@@ -194,6 +194,37 @@ BOOST_AUTO_TEST_CASE(check_reports_viscosity_and_actuators_when_present) {
   BOOST_TEST(contains(collapse(box.run("check v.yaml").out), "V[0] = 3 alpha Ix"));
 }
 
+// `rodlab check` reports the steps `dt: auto` takes, and they are the steps `rodlab dynamic`
+// takes: on the viscous control robot (alpha = 300 Pa s, Kirchhoff, N = 20) the variational
+// scheme's stable step is set by the viscous relaxation, 1.36e-5 s, ten times below the
+// thesis' (3.44) 0.9 ds sqrt(rho/E) = 1.5e-4 s, which ignores viscosity; the implicit schemes
+// take a tenth of the first bending period.
+BOOST_AUTO_TEST_CASE(check_reports_the_steps_dynamic_takes) {
+  Sandbox box;
+  const std::string scene = quote(std::string(RODLAB_SOURCE_DIR) + "/scenes/control-cable.yaml");
+  const std::string rod = " --nodes 20 --set rod.model=kirchhoff";
+  const Run r = box.run("check " + scene + rod + " --json");
+  BOOST_REQUIRE_EQUAL(r.status, 0);
+  const Json t = Json::parse(r.out)["time_scales"];
+  const double variational = t["dt_auto_variational"], implicit = t["dt_auto_implicit"];
+  BOOST_TEST(variational < 0.1 * t["dt_thesis"].get<double>());
+  const double f_b = Json::parse(r.out)["frequencies"]["first_bending_hz"];
+  BOOST_TEST(implicit == 0.1 / f_b, boost::test_tools::tolerance(1e-12));
+  for (const auto& [scheme, dt] : {std::pair{"variational", variational},
+                                   std::pair{"implicit-midpoint", implicit}}) {
+    const Run d = box.run("dynamic " + scene + rod + " --scheme " + scheme +
+                          " --t-end 0.05 --out d.json");
+    BOOST_REQUIRE_EQUAL(d.status, 0);
+    const Json result = Json::parse(read(box.work / "d.json"));
+    // the run fits a whole number of equal steps into t_end: within one step of auto's
+    const double taken = result["dt"], steps = result["steps"];
+    BOOST_TEST_CONTEXT(scheme) {
+      BOOST_TEST(taken <= dt * (1 + 1e-12));
+      BOOST_TEST(taken * (steps + 1) >= 0.05);
+    }
+  }
+}
+
 // --- option checking ------------------------------------------------------------------------
 
 // One rule for the node count (lib/include/rodlab/scene/schemes.hpp, min_nodes): statics from

@@ -386,11 +386,11 @@ BOOST_AUTO_TEST_CASE(control_json_has_every_key_of_the_spec) {
   const ControlResult r = control_result();
   const std::string text = rodlab::io::to_json(r);
   const Json j = Json::parse(text);
-  // the spec's keys in its order, then the extensions seed and targets
+  // the spec's keys in its order, then the extensions seed, targets and model_scheme
   const std::vector<std::string> expected_keys{
-      "schema",  "scene",     "controller", "task",     "scheme", "nodes",  "dt_control",
+      "schema",  "scene",     "controller", "task",     "scheme", "nodes",   "dt_control",
       "horizon", "converged", "reason",     "episodes", "series", "summary", "seed",
-      "targets"};
+      "targets", "model_scheme"};
   BOOST_TEST(keys(text) == expected_keys, boost::test_tools::per_element());
   BOOST_TEST(j["schema"] == "rodlab.control-result/1");
   BOOST_TEST(j["scene"] == "control-cable");
@@ -404,6 +404,10 @@ BOOST_AUTO_TEST_CASE(control_json_has_every_key_of_the_spec) {
   BOOST_TEST(j["horizon"].get<int>() == 10);
   BOOST_TEST(j["converged"].get<bool>());
   BOOST_TEST(j["reason"].is_null());  // present, and null when fine
+  BOOST_TEST(j["model_scheme"].is_null());  // the plant's scheme predicted
+  ControlResult split = r;
+  split.model_scheme = "implicit-midpoint";
+  BOOST_TEST(Json::parse(rodlab::io::to_json(split))["model_scheme"] == "implicit-midpoint");
 
   BOOST_REQUIRE_EQUAL(j["episodes"].size(), 2u);
   const std::vector<std::string> episode_keys{"target",    "success",    "steps", "final_error",

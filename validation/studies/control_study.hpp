@@ -107,6 +107,8 @@ std::string control_table_csv(const ControlStudy& study);
 Json control_study_json(const ControlStudy& study);
 /// Table 4.1's middle-circle error of the column [% of L]; NaN where the table has none.
 double thesis_track_error(const ControlColumn& column);
+/// The column's name in Table 4.1, e.g. "NLSQ Implicit, dt = 0.05 s", "NLSQ Kirchhoff", "LQR".
+std::string thesis_column_name(const ControlColumn& column);
 /// Table 4.1's layout, one table per horizon, each cell ours with the thesis' value beside it.
 std::string control_table_markdown(const ControlStudy& study);
 /// The data behind the figures: error and real-time ratio against the horizon per task

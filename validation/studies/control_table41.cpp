@@ -19,18 +19,19 @@ namespace {
 struct ThesisColumn {
   const char* kind;
   double dt;  ///< 0: any (the table gives none)
+  const char* title;  ///< the column's heading
   const char* real_time;
   const char* dynamic_reach;
   const char* static_reach;
   const char* trajectory;
 };
 constexpr ThesisColumn kThesisTable41[] = {
-    {"nlsq-implicit", 0.01, "No", "10/10", "10/10", "3.45 %"},
-    {"nlsq-implicit", 0.05, "No", "10/10", "10/10", "4.36 %"},
-    {"nlsq-implicit", 0.1, "0.95", "10/10", "10/10", "6.90 %"},
-    {"nlsq-kirchhoff", 0.0, "No", "9/10", "10/10", "1.64 %"},
-    {"lqr", 0.0, "No", "9/10", "10/10", "2.03 %"},
-    {"ilqr", 0.0, "No", "9/10", "10/10", "3.38 %"},
+    {"nlsq-implicit", 0.01, "NLSQ Implicit, dt = 0.01 s", "No", "10/10", "10/10", "3.45 %"},
+    {"nlsq-implicit", 0.05, "NLSQ Implicit, dt = 0.05 s", "No", "10/10", "10/10", "4.36 %"},
+    {"nlsq-implicit", 0.1, "NLSQ Implicit, dt = 0.1 s", "0.95", "10/10", "10/10", "6.90 %"},
+    {"nlsq-kirchhoff", 0.0, "NLSQ Kirchhoff", "No", "9/10", "10/10", "1.64 %"},
+    {"lqr", 0.0, "LQR", "No", "9/10", "10/10", "2.03 %"},
+    {"ilqr", 0.0, "iLQR", "No", "9/10", "10/10", "3.38 %"},
 };
 
 const ThesisColumn* thesis_column(const ControlColumn& c) {
@@ -130,6 +131,11 @@ std::string horizon_table(const ControlStudy& study, const std::vector<ControlCo
 double thesis_track_error(const ControlColumn& column) {
   const ThesisColumn* t = thesis_column(column);
   return t == nullptr ? std::nan("") : std::strtod(t->trajectory, nullptr);  // "3.45 %"
+}
+
+std::string thesis_column_name(const ControlColumn& column) {
+  const ThesisColumn* t = thesis_column(column);
+  return t == nullptr ? column.name : t->title;
 }
 
 std::string control_table_markdown(const ControlStudy& study) {

@@ -337,7 +337,6 @@ std::string to_json(const result::ControlResult& r) {
             {"controller", r.controller},
             {"task", r.task},
             {"scheme", r.scheme},
-            {"model_scheme", text_or_null(r.model_scheme)},
             {"nodes", r.nodes},
             {"dt_control", r.dt_control},
             {"horizon", r.horizon},
@@ -355,6 +354,7 @@ std::string to_json(const result::ControlResult& r) {
   json["seed"] = r.seed;
   json["targets"] = Json{{"drawn_from", target_source_name(r.targets.drawn_from)},
                          {"points", points_json(r.targets.points)}};
+  json["model_scheme"] = text_or_null(r.model_scheme);
   return dump(json);
 }
 

@@ -169,13 +169,13 @@ struct ControlWeights {
   double terminal = 1.0;     ///< on the last step's ||p - p_des||^2 / L^2 (stage steps weigh 1)
 };
 
-/// control: the task and settings of `rodlab control`; command-line options win.
 /// The schemes a controller can predict with for a plant of another scheme (control.model_scheme):
 /// those whose tangent coordinates are their whole state (bdf-alpha's history x_(i-1), x_dot_i is
 /// not; ida has no plant); docs/control.md "Model and plant".
 inline constexpr std::string_view kModelSchemes[] = {"implicit-midpoint",
                                                      "implicit-midpoint-collocation", "variational"};
 
+/// control: the task and settings of `rodlab control`; command-line options win.
 struct Control {
   ControlTask task = ControlTask::reach;  ///< default: track with a trajectory, else reach
   std::vector<Vector3> targets;           ///< [m], world frame; empty: drawn from the workspace
