@@ -4,17 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <memory>
 #include <optional>
 #include <span>
 #include <stdexcept>
 
 #include "rodlab/check.hpp"
-#include "rodlab/rod/characteristics.hpp"
 #include "rodlab/scene/trajectory.hpp"
-#include "rodlab/solvers/dynamics/dynamic_workspace.hpp"
 #include "rodlab/solvers/common/deadline.hpp"
+#include "rodlab/solvers/control/dynamic_targets.hpp"
 #include "rodlab/solvers/control/ilqr.hpp"
 #include "rodlab/solvers/control/inverse_statics.hpp"
 #include "rodlab/solvers/control/lqr_hold.hpp"
@@ -61,43 +59,17 @@ int track_steps(const scene::Control& c) {
                                                 1e-9)));
 }
 
-/// The targets of reach and hold: listed, or drawn from the static workspace.
-/// `count` targets from the dynamic workspace (dynamic_workspace.hpp, thesis 3.4.1): random
-/// inputs each held for one first bending period on the plant's scheme, every recorded tip a
-/// candidate (points the rod passes through, beyond what it can hold) unless it lies within the
-/// success threshold of the rest tip, `count` of them drawn with the seed.
+/// `count` targets from the dynamic workspace (dynamic_targets.hpp, thesis 3.4.1) on the plant's
+/// scheme, none within the success threshold of the rest tip.
 std::vector<Vector3> dynamic_targets(const scene::Scene& scene, const ControlRunOptions& o) {
   const scene::Control& c = o.control;
-  dynamics::DynamicWorkspaceOptions w;
-  w.solve = o.solver;
-  w.solve.max_iterations = std::max(o.solver.max_iterations, PlantOptions::kShotsPerStep);
-  w.holds = std::max(kDynamicHolds, c.target_count);
-  const auto problem = dynamics::DynamicProblem::from_scene(scene);
-  // the plant's step (for variational below its stability limit: dt_c is far above it)
-  PlantOptions po;
-  po.solver = o.solver;
-  po.dt_control = c.dt_control;
-  w.solve.dt = requested_step(problem, po);
-  const auto ch = rod::characteristics(problem.model(), o.solver.nodes, rod::TipSupport::free);
-  w.hold_time = std::max(c.dt_control, 1.0 / ch.first_bending_frequency_hz);
-  w.outputs_per_hold = 10;
-  w.seed = c.seed;
-  const auto run = dynamics::sample_dynamic_workspace(scene, w);
-  // candidates: every reached tip beyond the success threshold of the rest shape's tip (a
-  // target the rod starts on is no test)
-  const Vector3 rest = problem.reference_tip().translation();
-  std::vector<Vector3> tips;
-  for (const auto& sample : run.samples) {
-    const Vector3 tip = scene.base.pose * sample.tip;  // world frame
-    if (sample.converged && (tip - rest).norm() > c.threshold * scene.rod.length)
-      tips.push_back(tip);
-  }
-  RODLAB_THROW_UNLESS(!tips.empty(), "control: the dynamic workspace run reached no tip");
-  std::mt19937 rng(c.seed);
-  std::vector<Vector3> out;
-  for (int k = 0; k < c.target_count; ++k)
-    out.push_back(tips[static_cast<std::size_t>(rng() % tips.size())]);
-  return out;
+  DynamicTargetOptions d;
+  d.solver = o.solver;
+  d.dt_control = c.dt_control;
+  d.holds = std::max(kDynamicHolds, c.target_count);
+  d.exclude_radius = c.threshold * scene.rod.length;
+  d.seed = c.seed;
+  return draw_dynamic_targets(scene, d, c.target_count);
 }
 
 /// The targets of reach and hold: listed, else drawn: from the dynamic workspace for a dynamic

@@ -1,0 +1,134 @@
+#pragma once
+// The learning environment (issue #15 item 1, thesis 4.4.2; docs/learning.md "Environment"): an
+// episode of the rod's plant (control/plant.hpp) under actions a in [-1, 1]^m, one per actuator,
+// each mapped to its limits, u = lower + (a + 1) / 2 (upper - lower), held over a control step
+// of dt_c (a is clipped to [-1, 1] first: exploration noise may leave the box). Every episode
+// starts from the plant's initial state (at rest) and aims at a goal: a point (reach-one,
+// reach-any) or a path p_des(t) (track). The reward is (4.40) with beta (reward.hpp).
+//
+// Observation (all dimensionless; L the rod length, T the first bending period):
+//   [0, 3)    the tip position p / L (world frame)
+//   [3, 6)    the tip's mean velocity over the last control step, (p_k - p_(k-1)) / dt_c * T / L
+//             (zero at the episode's start)
+//   [6, 9)    the goal's position p_des(t) / L at the end of the coming control step
+//   [9, 12)   track only: the goal's velocity there, v_des * T / L
+//   then, with state_nodes = K > 0: the plant's tangent coordinates (plant.hpp: segment strains
+//             minus xi*, node velocities) of K segments and nodes evenly spaced to the tip, each
+//             divided by its characteristic size (Plant::state_scale).
+//
+// An episode ends with success (reach: the tip within threshold L of the target, thesis 4.4.2:
+// 5 %), at max_steps (reach) or at the path's end (track), or when the plant's step fails
+// (reported in the transition: failed and its reason; the reward is -1 there).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rodlab/scene/scene.hpp"
+#include "rodlab/solvers/control/plant.hpp"
+#include "rodlab/solvers/learning/polynomial_path.hpp"
+
+namespace rodlab::solvers::learning {
+
+enum class LearningTask { reach_one, reach_any, track };
+
+/// "reach-one", "reach-any", "track" (the names of `rodlab train --task`).
+const char* task_name(LearningTask task);
+/// Throws std::invalid_argument for another name.
+LearningTask task_from_name(const std::string& name);
+
+struct EnvironmentOptions {
+  control::PlantOptions plant;  ///< scheme, nodes, dt_control (the thesis: implicit, 0.05 s)
+  LearningTask task = LearningTask::reach_any;
+  double beta = 0.3;            ///< (4.40)
+  double threshold = 0.05;      ///< success: tip error below threshold * L
+  int max_steps = 100;          ///< control steps of a reach episode
+  int state_nodes = 0;          ///< K: the state of K nodes in the observation (header)
+  double track_duration = 4.0;  ///< [s] of a random path (the middle circle's period)
+  /// [m/s] bound of each component of a random path's end velocities ("small", thesis 4.4.2).
+  double track_end_speed = 0.01;
+};
+
+/// What an episode aims at: a fixed point, or a path with its velocity.
+struct Goal {
+  std::optional<lie::Vector3> point;
+  std::optional<PolynomialPath> path;
+  std::optional<scene::Trajectory> trajectory;  ///< e.g. the middle circle (evaluation)
+
+  lie::Vector3 position(double t) const;
+  lie::Vector3 velocity(double t) const;  ///< zero for a point; by central differences for a trajectory
+  /// The episode's length for a path [s]; 0 for a point.
+  double duration() const;
+};
+
+/// Where goals are drawn from: reach-one, its one target; reach-any, candidate targets (tips of
+/// the dynamic workspace); track, points of the static workspace (the paths' ends).
+struct GoalPool {
+  std::vector<lie::Vector3> points;
+};
+
+/// One step's outcome.
+struct Transition {
+  double reward = 0.0;
+  double error = 0.0;    ///< ||tip - p_des|| after the step [m]
+  bool done = false;     ///< the episode ended (success, its length, or a failure)
+  bool success = false;  ///< reach: within the threshold (track: at the end, mean error below it)
+  bool failed = false;   ///< the plant's step failed: `reason`
+  std::string reason;
+};
+
+class Environment {
+ public:
+  /// Throws std::invalid_argument for bad options, an empty pool, or what the plant refuses.
+  Environment(const scene::Scene& scene, const EnvironmentOptions& options, GoalPool pool);
+
+  int observation_size() const { return observation_size_; }
+  int action_size() const { return plant_.input_count(); }
+  double length() const { return plant_.length(); }
+  /// T, the first bending period [s] (the observation's velocity scale).
+  double period() const { return period_; }
+  const EnvironmentOptions& options() const { return options_; }
+
+  /// A new episode: the plant at rest, the goal drawn from the pool with `seed` (reach-one: its
+  /// target; reach-any: a candidate; track: a path between two pool points with random end
+  /// velocities). observation.size() == observation_size().
+  void reset(std::uint64_t seed, std::span<double> observation);
+  /// A new episode towards `goal` (evaluation: a listed target, the middle circle).
+  void reset(const Goal& goal, std::span<double> observation);
+  /// One control step under `action` (size action_size(), each clipped to [-1, 1]).
+  Transition step(std::span<const double> action, std::span<double> observation);
+
+  /// The inputs an action holds (u = lower + (a + 1) / 2 (upper - lower), a clipped).
+  void action_to_input(std::span<const double> action, Eigen::VectorXd& u) const;
+
+  const Goal& goal() const { return goal_; }
+  int steps() const { return steps_; }
+  double time() const { return steps_ * plant_.dt_control(); }
+  lie::Vector3 tip() const { return plant_.tip(); }
+  const control::Plant& plant() const { return plant_; }
+
+ private:
+  void observe(std::span<double> observation);
+  /// The episode's last step: its length (reach) or the path's end (track).
+  int episode_steps() const;
+
+  EnvironmentOptions options_;
+  GoalPool pool_;
+  control::Plant plant_;
+  control::PlantSnapshot initial_;
+  Goal goal_;
+  double period_ = 0.0;  ///< T, the first bending period [s]
+  int observation_size_ = 0;
+  std::vector<int> state_index_;  ///< tangent coordinates observed (state_nodes)
+  Eigen::VectorXd u_, x_;
+  lie::Vector3 tip_before_ = lie::Vector3::Zero();
+  int steps_ = 0;
+  double error_sum_ = 0.0;
+  bool done_ = true;
+};
+
+}  // namespace rodlab::solvers::learning

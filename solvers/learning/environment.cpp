@@ -1,0 +1,194 @@
+#include "rodlab/solvers/learning/environment.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "rodlab/check.hpp"
+#include "rodlab/rod/characteristics.hpp"
+#include "rodlab/scene/trajectory.hpp"
+#include "rodlab/solvers/learning/reward.hpp"
+
+namespace rodlab::solvers::learning {
+namespace {
+
+/// Central-difference step of a trajectory's velocity [s].
+constexpr double kVelocityStep = 1e-4;
+
+}  // namespace
+
+const char* task_name(LearningTask task) {
+  switch (task) {
+    case LearningTask::reach_one: return "reach-one";
+    case LearningTask::reach_any: return "reach-any";
+    case LearningTask::track: return "track";
+  }
+  return "?";
+}
+
+LearningTask task_from_name(const std::string& name) {
+  for (const LearningTask t : {LearningTask::reach_one, LearningTask::reach_any, LearningTask::track})
+    if (name == task_name(t)) return t;
+  throw std::invalid_argument("learning: unknown task '" + name +
+                              "' (reach-one, reach-any, track)");
+}
+
+lie::Vector3 Goal::position(double t) const {
+  if (path) return path->position(t);
+  if (trajectory) return scene::position(*trajectory, t);
+  return point.value_or(lie::Vector3::Zero());
+}
+
+lie::Vector3 Goal::velocity(double t) const {
+  if (path) return path->velocity(t);
+  if (trajectory)
+    return (scene::position(*trajectory, t + kVelocityStep) -
+            scene::position(*trajectory, t - kVelocityStep)) /
+           (2.0 * kVelocityStep);
+  return lie::Vector3::Zero();
+}
+
+double Goal::duration() const {
+  if (path) return path->duration();
+  if (trajectory) return scene::duration(*trajectory);
+  return 0.0;
+}
+
+Environment::Environment(const scene::Scene& scene, const EnvironmentOptions& options, GoalPool pool)
+    : options_(options), pool_(std::move(pool)), plant_(scene, options.plant),
+      initial_(plant_.snapshot()) {
+  RODLAB_THROW_UNLESS(options.beta > 0.0 && options.beta <= 1.0,
+                      "learning: beta must be in (0, 1] (got {:g})", options.beta);
+  RODLAB_THROW_UNLESS(options.threshold > 0.0 && options.max_steps >= 1 &&
+                          options.state_nodes >= 0 && options.track_duration > 0.0 &&
+                          options.track_end_speed >= 0.0,
+                      "learning: threshold, max_steps and track_duration must be positive, "
+                      "state_nodes and track_end_speed not negative");
+  RODLAB_THROW_UNLESS(!pool_.points.empty(), "learning: the goal pool is empty");
+  RODLAB_THROW_UNLESS(options.task != LearningTask::track || pool_.points.size() >= 2,
+                      "learning: track needs at least two points in the pool (got {})",
+                      pool_.points.size());
+  const auto c = rod::characteristics(plant_.problem().model(), options.plant.solver.nodes,
+                                      rod::TipSupport::free);
+  period_ = 1.0 / c.first_bending_frequency_hz;
+  // the tangent coordinates of state_nodes segments and nodes, evenly spaced to the tip
+  const int n = options.plant.solver.nodes;
+  const int strains = plant_.state_size() / (n - 1) - 6;  // 6 (Cosserat) or 3 (Kirchhoff)
+  const int K = std::min(options.state_nodes, n - 1);
+  for (int k = 1; k <= K; ++k) {
+    const int node = static_cast<int>(std::lround(static_cast<double>(k) * (n - 1) / K));
+    for (int i = 0; i < strains; ++i) state_index_.push_back((node - 1) * strains + i);
+    for (int i = 0; i < 6; ++i) state_index_.push_back((n - 1) * strains + (node - 1) * 6 + i);
+  }
+  observation_size_ = (options.task == LearningTask::track ? 12 : 9) +
+                      static_cast<int>(state_index_.size());
+  x_.resize(plant_.state_size());
+  u_.resize(plant_.input_count());
+}
+
+void Environment::reset(std::uint64_t seed, std::span<double> observation) {
+  std::mt19937_64 rng(seed);
+  const auto draw = [&] { return pool_.points[rng() % pool_.points.size()]; };
+  Goal goal;
+  switch (options_.task) {
+    case LearningTask::reach_one: goal.point = pool_.points.front(); break;
+    case LearningTask::reach_any: goal.point = draw(); break;
+    case LearningTask::track: {
+      const lie::Vector3 start = draw();
+      lie::Vector3 end = draw();
+      for (int tries = 0; tries < 16 && end == start; ++tries) end = draw();
+      std::uniform_real_distribution<double> speed(-options_.track_end_speed,
+                                                   options_.track_end_speed);
+      const lie::Vector3 v0(speed(rng), speed(rng), speed(rng));
+      const lie::Vector3 v1(speed(rng), speed(rng), speed(rng));
+      goal.path.emplace(start, v0, end, v1, options_.track_duration);
+      break;
+    }
+  }
+  reset(goal, observation);
+}
+
+void Environment::reset(const Goal& goal, std::span<double> observation) {
+  RODLAB_THROW_UNLESS(goal.point || goal.path || goal.trajectory, "learning: an empty goal");
+  RODLAB_THROW_UNLESS((options_.task == LearningTask::track) == (goal.duration() > 0.0),
+                      "learning: task {} needs a {}", task_name(options_.task),
+                      options_.task == LearningTask::track ? "path" : "point");
+  goal_ = goal;
+  plant_.restore(initial_);
+  tip_before_ = plant_.tip();
+  steps_ = 0;
+  error_sum_ = 0.0;
+  done_ = false;
+  observe(observation);
+}
+
+void Environment::action_to_input(std::span<const double> action, Eigen::VectorXd& u) const {
+  RODLAB_THROW_UNLESS(static_cast<int>(action.size()) == action_size(),
+                      "learning: expected {} actions, got {}", action_size(), action.size());
+  u.resize(action_size());
+  const auto& lo = plant_.lower();
+  const auto& hi = plant_.upper();
+  for (int k = 0; k < action_size(); ++k) {
+    const double a = std::clamp(action[static_cast<std::size_t>(k)], -1.0, 1.0);
+    u[k] = std::clamp(lo[k] + 0.5 * (a + 1.0) * (hi[k] - lo[k]), lo[k], hi[k]);
+  }
+}
+
+int Environment::episode_steps() const {
+  if (options_.task != LearningTask::track) return options_.max_steps;
+  return std::max(1, static_cast<int>(std::ceil(goal_.duration() / plant_.dt_control() - 1e-9)));
+}
+
+Transition Environment::step(std::span<const double> action, std::span<double> observation) {
+  RODLAB_THROW_UNLESS(!done_, "learning: step after the episode ended (reset first)");
+  action_to_input(action, u_);
+  plant_.set_input(u_);
+  tip_before_ = plant_.tip();
+  const dynamics::StepStatus status = plant_.advance();
+  ++steps_;
+  Transition tr;
+  const double L = length();
+  tr.error = (plant_.tip() - goal_.position(time())).norm();
+  if (!status.ok) {
+    tr.reward = -1.0;
+    tr.done = tr.failed = true;
+    tr.reason = "the plant's step failed: " + status.reason;
+  } else {
+    tr.reward = reward(tr.error, options_.beta, L);  // (4.40)
+    error_sum_ += tr.error;
+    const bool track = options_.task == LearningTask::track;
+    const bool last = steps_ >= episode_steps();
+    tr.success = track ? last && error_sum_ / steps_ < options_.threshold * L
+                       : tr.error < options_.threshold * L;
+    tr.done = last || (!track && tr.success);
+  }
+  done_ = tr.done;
+  observe(observation);
+  return tr;
+}
+
+void Environment::observe(std::span<double> o) {
+  RODLAB_THROW_UNLESS(static_cast<int>(o.size()) == observation_size_,
+                      "learning: expected an observation of {} values, got {}", observation_size_,
+                      o.size());
+  const double L = length(), dt = plant_.dt_control();
+  const lie::Vector3 p = plant_.tip();
+  const lie::Vector3 v = steps_ == 0 ? lie::Vector3::Zero() : lie::Vector3((p - tip_before_) / dt);
+  // the goal at the end of the coming control step
+  const double t_next = time() + dt;
+  const lie::Vector3 target = goal_.position(t_next);
+  std::size_t i = 0;
+  for (int k = 0; k < 3; ++k) o[i++] = p[k] / L;
+  for (int k = 0; k < 3; ++k) o[i++] = v[k] * period_ / L;
+  for (int k = 0; k < 3; ++k) o[i++] = target[k] / L;
+  if (options_.task == LearningTask::track) {
+    const lie::Vector3 vd = goal_.velocity(t_next);
+    for (int k = 0; k < 3; ++k) o[i++] = vd[k] * period_ / L;
+  }
+  if (state_index_.empty()) return;
+  plant_.read_state(std::span<double>(x_.data(), x_.size()));
+  for (const int j : state_index_) o[i++] = x_[j] / plant_.state_scale()[j];
+}
+
+}  // namespace rodlab::solvers::learning

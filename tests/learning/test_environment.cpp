@@ -1,0 +1,203 @@
+// The learning environment (solvers/learning/environment.hpp, issue #15 item 1): the reward
+// (4.40) at its cases, the random paths' boundary conditions (closed form), the action map, and
+// episodes on the control robot (tests/control/control_support.hpp: the Table 2.1 rod, four
+// cables in [0, 0.5] N, alpha = 300 Pa s), implicit-midpoint N = 10, dt_c = 0.05 s.
+#define BOOST_TEST_MODULE learning_environment
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "../control/control_support.hpp"
+#include "rodlab/solvers/control/inverse_statics.hpp"
+#include "rodlab/solvers/learning/environment.hpp"
+#include "rodlab/solvers/learning/goal_pool.hpp"
+#include "rodlab/solvers/learning/polynomial_path.hpp"
+#include "rodlab/solvers/learning/reward.hpp"
+#include "rodlab/solvers/statics/solve_static.hpp"
+
+namespace l = rodlab::solvers::learning;
+using rodlab::lie::Vector3;
+using rodlab::testing::control::cable_robot;
+using rodlab::testing::control::plant_options;
+
+namespace {
+
+constexpr double L = 0.1;
+
+l::EnvironmentOptions options(l::LearningTask task, int state_nodes = 0) {
+  l::EnvironmentOptions o;
+  o.plant = plant_options("implicit-midpoint", 10, 0.05);
+  o.task = task;
+  o.state_nodes = state_nodes;
+  return o;
+}
+
+/// A pool of points 3 cm off the axis on the side of cables 1-3 (for episodes that only step:
+/// the tests pull cable 0, towards +x, so none of them is reached early).
+l::GoalPool pool() {
+  return {{Vector3(0, 0.03, 0.09), Vector3(0, -0.03, 0.09), Vector3(-0.03, 0, 0.09),
+           Vector3(-0.02, 0.02, 0.09), Vector3(-0.02, -0.02, 0.09)}};
+}
+
+}  // namespace
+
+// (4.40) with beta = 0.3, L = 0.1 m: 0 on the target, -e / (beta L) inside beta L = 3 cm, -1
+// outside; continuous at the edge. Closed form.
+BOOST_AUTO_TEST_CASE(reward_4_40_at_its_cases) {
+  const double b = l::kThesisBeta;
+  BOOST_TEST(l::reward(0.0, b, L) == 0.0);
+  BOOST_TEST(l::reward(0.015, b, L) == -0.5, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(l::reward(0.03, b, L) == -1.0, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(l::reward(0.03 * (1 - 1e-12), b, L) > -1.0);
+  BOOST_TEST(l::reward(0.06, b, L) == -1.0);
+  BOOST_TEST(l::reward(1e3, b, L) == -1.0);
+}
+
+// The quartic's five conditions (closed form, polynomial_path.hpp), evaluated on the polynomial
+// itself just inside [0, T] (at the ends the path returns its end points): p -> p0 and p' -> v0
+// at 0+, p'' (0) = 0 (the difference quotient of p' falls linearly with h: 3 c3 h), p -> p1 and
+// p' = v1 at T; p' is p's derivative inside (central differences, 1e-9); it waits outside.
+BOOST_AUTO_TEST_CASE(random_path_meets_its_end_conditions) {
+  const Vector3 p0(0.01, -0.02, 0.09), v0(0.003, -0.001, 0.002), p1(-0.015, 0.01, 0.095),
+      v1(-0.002, 0.004, 0.0);
+  const double T = 4.0, eps = 1e-12;
+  const l::PolynomialPath path(p0, v0, p1, v1, T);
+  BOOST_TEST((path.position(eps) - p0).norm() < 1e-14);
+  BOOST_TEST((path.velocity(eps) - v0).norm() < 1e-14);
+  BOOST_TEST((path.position(T - eps) - p1).norm() < 1e-14);
+  BOOST_TEST((path.velocity(T) - v1).norm() < 1e-15);
+  const double a3 = (path.velocity(1e-3) - v0).norm() / 1e-3;  // 3 |c3| 1e-3 + O(1e-6)
+  const double a4 = (path.velocity(1e-4) - v0).norm() / 1e-4;
+  BOOST_TEST(a4 < 0.11 * a3);  // -> 0: p''(0) = 0
+  for (const double t : {0.7, 2.0, 3.3}) {
+    const Vector3 fd = (path.position(t + 1e-5) - path.position(t - 1e-5)) / 2e-5;
+    BOOST_TEST((fd - path.velocity(t)).norm() < 1e-9);
+  }
+  BOOST_TEST((path.position(-1) - p0).norm() == 0.0);
+  BOOST_TEST((path.position(T + 1) - p1).norm() == 0.0);
+  BOOST_TEST(path.velocity(T + 1).norm() == 0.0);
+  BOOST_CHECK_THROW(l::PolynomialPath(p0, v0, p1, v1, 0.0), std::invalid_argument);
+}
+
+// Actions in [-1, 1] map onto each cable's [0, 0.5] N linearly; beyond the box they are clipped.
+BOOST_AUTO_TEST_CASE(actions_map_onto_the_limits) {
+  l::Environment env(cable_robot(), options(l::LearningTask::reach_any), pool());
+  BOOST_TEST(env.action_size() == 4);
+  BOOST_TEST(env.observation_size() == 9);
+  Eigen::VectorXd u;
+  const std::vector<double> a{-1.0, 0.0, 1.0, 3.0};
+  env.action_to_input(a, u);
+  BOOST_TEST(u[0] == 0.0);
+  BOOST_TEST(u[1] == 0.25);
+  BOOST_TEST(u[2] == 0.5);
+  BOOST_TEST(u[3] == 0.5);  // clipped
+  const std::vector<double> three{0.0, 0.0, 0.0};
+  BOOST_CHECK_THROW(env.action_to_input(three, u), std::invalid_argument);
+}
+
+// The same seed gives the same goal and, under the same actions, the same observations and
+// rewards bit for bit; the reward is (4.40) of the reported error; the observation holds the
+// tip / L, its mean velocity over the step and the goal / L.
+BOOST_AUTO_TEST_CASE(episodes_repeat_with_their_seed) {
+  l::Environment env(cable_robot(), options(l::LearningTask::reach_any), pool());
+  std::vector<double> o1(9), o2(9);
+  const std::vector<double> a{0.4, -1.0, -0.8, -1.0};
+  std::vector<double> first, second;
+  for (auto* trace : {&first, &second}) {
+    env.reset(7, o1);
+    trace->insert(trace->end(), o1.begin(), o1.end());
+    for (int k = 0; k < 4; ++k) {
+      const Vector3 before = env.tip();
+      const l::Transition tr = env.step(a, o2);
+      BOOST_TEST_REQUIRE(!tr.failed, tr.reason);
+      BOOST_TEST(tr.reward == l::reward(tr.error, 0.3, L));
+      BOOST_TEST(tr.error == (env.tip() - env.goal().position(env.time())).norm());
+      for (int i = 0; i < 3; ++i) {
+        BOOST_TEST(o2[i] == env.tip()[i] / L);
+        BOOST_TEST(o2[6 + i] == env.goal().position(env.time() + 0.05)[i] / L);
+      }
+      const Vector3 v = (env.tip() - before) / 0.05;
+      BOOST_TEST(v.norm() > 0.0);  // the rod moves
+      for (int i = 0; i < 3; ++i) BOOST_TEST(o2[3 + i] == v[i] * env.period() / L);
+      trace->insert(trace->end(), o2.begin(), o2.end());
+      trace->push_back(tr.reward);
+    }
+  }
+  BOOST_TEST(first == second, boost::test_tools::per_element());
+  // other seeds draw other goals: 20 seeds reach at least 4 of the pool's 5 points
+  std::vector<Vector3> seen;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    env.reset(seed, o1);
+    const Vector3 g = *env.goal().point;
+    if (std::none_of(seen.begin(), seen.end(), [&](const Vector3& s) { return s == g; }))
+      seen.push_back(g);
+  }
+  BOOST_TEST(seen.size() >= 4u);
+}
+
+// Reaching: the goal is the static tip under 0.3 N on cable 0 (forward statics, chebyshev);
+// holding the action of that input, the damped rod settles there and the episode ends in
+// success within 5 % of L before max_steps; a step after the end is refused.
+BOOST_AUTO_TEST_CASE(holding_the_right_input_reaches_its_static_tip) {
+  auto scene = cable_robot();
+  rodlab::solvers::control::InverseStaticsOptions is;
+  is.statics.nodes = 10;
+  rodlab::solvers::control::InverseStatics statics(scene, is);
+  // the tip of u = (0.3, 0, 0, 0): inverse statics for a target it then reports exactly
+  const auto r = statics.solve(Vector3(0.02, 0.0, 0.097));
+  BOOST_TEST_REQUIRE(r.converged);
+  l::Goal goal;
+  goal.point = r.tip;
+  l::Environment env(scene, options(l::LearningTask::reach_one), {{r.tip}});
+  std::vector<double> o(9), a(4);
+  for (int k = 0; k < 4; ++k) a[k] = 2.0 * r.u[k] / 0.5 - 1.0;
+  env.reset(goal, o);
+  l::Transition tr;
+  while (!tr.done) tr = env.step(a, o);
+  BOOST_TEST(tr.success);
+  BOOST_TEST(!tr.failed);
+  BOOST_TEST(tr.error < 0.05 * L);
+  BOOST_TEST(env.steps() < 100);
+  BOOST_TEST(tr.reward > -0.05 / 0.3);
+  BOOST_CHECK_THROW(env.step(a, o), std::invalid_argument);
+}
+
+// Tracking: a random quartic between two pool points; the episode lasts the path's duration in
+// control steps (4 s / 0.05 s = 80), its observation adds the goal's velocity; the state of K
+// nodes adds K (6 + 6) coordinates divided by their characteristic sizes.
+BOOST_AUTO_TEST_CASE(track_episodes_last_the_path) {
+  l::Environment env(cable_robot(), options(l::LearningTask::track, 3), pool());
+  BOOST_TEST(env.observation_size() == 12 + 3 * 12);
+  std::vector<double> o(static_cast<std::size_t>(env.observation_size()));
+  env.reset(3, o);
+  BOOST_TEST_REQUIRE(env.goal().path.has_value());
+  const std::vector<double> a{-1.0, -1.0, -1.0, -1.0};
+  int steps = 0;
+  for (l::Transition tr; !tr.done; ++steps) tr = env.step(a, o);
+  BOOST_TEST(steps == 80);
+  // at rest and slack the state is zero: the observed strains and velocities too
+  for (std::size_t i = 12; i < o.size(); ++i) BOOST_TEST(std::abs(o[i]) < 1e-12);
+  // a reach goal for a track environment is refused
+  l::Goal point;
+  point.point = Vector3(0, 0, 0.1);
+  BOOST_CHECK_THROW(env.reset(point, o), std::invalid_argument);
+}
+
+// reach-one's goal lies in the dynamic workspace but outside the static one: its closest
+// quasi-static tip (inverse statics) is farther than the success threshold.
+BOOST_AUTO_TEST_CASE(reach_one_goal_cannot_be_held) {
+  auto scene = cable_robot();
+  const auto o = options(l::LearningTask::reach_one);
+  l::GoalPoolOptions po;
+  po.dynamic_holds = 10;
+  const l::GoalPool p = l::make_goal_pool(scene, o, po);
+  BOOST_TEST_REQUIRE(p.points.size() == 1u);
+  rodlab::solvers::control::InverseStaticsOptions is;
+  is.statics.nodes = 10;
+  rodlab::solvers::control::InverseStatics statics(scene, is);
+  const auto r = statics.solve(p.points.front());
+  BOOST_TEST(r.error > 0.05 * L);
+  BOOST_TEST((p.points.front() - Vector3(0, 0, L)).norm() > 0.05 * L);
+}
