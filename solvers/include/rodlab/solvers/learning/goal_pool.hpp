@@ -8,7 +8,7 @@
 //   track      tips of the static workspace (control/static_targets.hpp), the ends of the
 //              random paths.
 #include "rodlab/scene/scene.hpp"
-#include "rodlab/solvers/learning/environment.hpp"
+#include "rodlab/solvers/learning/rod_environment.hpp"
 
 namespace rodlab::solvers::learning {
 

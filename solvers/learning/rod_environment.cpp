@@ -1,4 +1,4 @@
-#include "rodlab/solvers/learning/environment.hpp"
+#include "rodlab/solvers/learning/rod_environment.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -55,7 +55,7 @@ double Goal::duration() const {
   return 0.0;
 }
 
-Environment::Environment(const scene::Scene& scene, const EnvironmentOptions& options, GoalPool pool)
+RodEnvironment::RodEnvironment(const scene::Scene& scene, const EnvironmentOptions& options, GoalPool pool)
     : options_(options), pool_(std::move(pool)), plant_(scene, options.plant),
       initial_(plant_.snapshot()) {
   RODLAB_THROW_UNLESS(options.beta > 0.0 && options.beta <= 1.0,
@@ -87,7 +87,7 @@ Environment::Environment(const scene::Scene& scene, const EnvironmentOptions& op
   u_.resize(plant_.input_count());
 }
 
-void Environment::reset(std::uint64_t seed, std::span<double> observation) {
+void RodEnvironment::reset(std::uint64_t seed, std::span<double> observation) {
   std::mt19937_64 rng(seed);
   const auto draw = [&] { return pool_.points[rng() % pool_.points.size()]; };
   Goal goal;
@@ -109,7 +109,7 @@ void Environment::reset(std::uint64_t seed, std::span<double> observation) {
   reset(goal, observation);
 }
 
-void Environment::reset(const Goal& goal, std::span<double> observation) {
+void RodEnvironment::reset(const Goal& goal, std::span<double> observation) {
   RODLAB_THROW_UNLESS(goal.point || goal.path || goal.trajectory, "learning: an empty goal");
   RODLAB_THROW_UNLESS((options_.task == LearningTask::track) == (goal.duration() > 0.0),
                       "learning: task {} needs a {}", task_name(options_.task),
@@ -123,7 +123,7 @@ void Environment::reset(const Goal& goal, std::span<double> observation) {
   observe(observation);
 }
 
-void Environment::action_to_input(std::span<const double> action, Eigen::VectorXd& u) const {
+void RodEnvironment::action_to_input(std::span<const double> action, Eigen::VectorXd& u) const {
   RODLAB_THROW_UNLESS(static_cast<int>(action.size()) == action_size(),
                       "learning: expected {} actions, got {}", action_size(), action.size());
   u.resize(action_size());
@@ -135,12 +135,12 @@ void Environment::action_to_input(std::span<const double> action, Eigen::VectorX
   }
 }
 
-int Environment::episode_steps() const {
+int RodEnvironment::episode_steps() const {
   if (options_.task != LearningTask::track) return options_.max_steps;
   return std::max(1, static_cast<int>(std::ceil(goal_.duration() / plant_.dt_control() - 1e-9)));
 }
 
-Transition Environment::step(std::span<const double> action, std::span<double> observation) {
+Transition RodEnvironment::step(std::span<const double> action, std::span<double> observation) {
   RODLAB_THROW_UNLESS(!done_, "learning: step after the episode ended (reset first)");
   action_to_input(action, u_);
   plant_.set_input(u_);
@@ -152,7 +152,7 @@ Transition Environment::step(std::span<const double> action, std::span<double> o
   tr.error = (plant_.tip() - goal_.position(time())).norm();
   if (!status.ok) {
     tr.reward = -1.0;
-    tr.done = tr.failed = true;
+    tr.done = tr.terminal = tr.failed = true;
     tr.reason = "the plant's step failed: " + status.reason;
   } else {
     tr.reward = reward(tr.error, options_.beta, L);  // (4.40)
@@ -161,14 +161,15 @@ Transition Environment::step(std::span<const double> action, std::span<double> o
     const bool last = steps_ >= episode_steps();
     tr.success = track ? last && error_sum_ / steps_ < options_.threshold * L
                        : tr.error < options_.threshold * L;
-    tr.done = last || (!track && tr.success);
+    tr.terminal = !track && tr.success;
+    tr.done = last || tr.terminal;
   }
   done_ = tr.done;
   observe(observation);
   return tr;
 }
 
-void Environment::observe(std::span<double> o) {
+void RodEnvironment::observe(std::span<double> o) {
   RODLAB_THROW_UNLESS(static_cast<int>(o.size()) == observation_size_,
                       "learning: expected an observation of {} values, got {}", observation_size_,
                       o.size());

@@ -18,7 +18,8 @@
 //
 // An episode ends with success (reach: the tip within threshold L of the target, thesis 4.4.2:
 // 5 %), at max_steps (reach) or at the path's end (track), or when the plant's step fails
-// (reported in the transition: failed and its reason; the reward is -1 there).
+// (reported in the transition: failed and its reason; the reward is -1 there). Success and a
+// failure are terminal; the end of a reach episode's steps or of a path is not.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -30,6 +31,7 @@
 
 #include "rodlab/scene/scene.hpp"
 #include "rodlab/solvers/control/plant.hpp"
+#include "rodlab/solvers/learning/learning_environment.hpp"
 #include "rodlab/solvers/learning/polynomial_path.hpp"
 
 namespace rodlab::solvers::learning {
@@ -71,23 +73,13 @@ struct GoalPool {
   std::vector<lie::Vector3> points;
 };
 
-/// One step's outcome.
-struct Transition {
-  double reward = 0.0;
-  double error = 0.0;    ///< ||tip - p_des|| after the step [m]
-  bool done = false;     ///< the episode ended (success, its length, or a failure)
-  bool success = false;  ///< reach: within the threshold (track: at the end, mean error below it)
-  bool failed = false;   ///< the plant's step failed: `reason`
-  std::string reason;
-};
-
-class Environment {
+class RodEnvironment final : public LearningEnvironment {
  public:
   /// Throws std::invalid_argument for bad options, an empty pool, or what the plant refuses.
-  Environment(const scene::Scene& scene, const EnvironmentOptions& options, GoalPool pool);
+  RodEnvironment(const scene::Scene& scene, const EnvironmentOptions& options, GoalPool pool);
 
-  int observation_size() const { return observation_size_; }
-  int action_size() const { return plant_.input_count(); }
+  int observation_size() const override { return observation_size_; }
+  int action_size() const override { return plant_.input_count(); }
   double length() const { return plant_.length(); }
   /// T, the first bending period [s] (the observation's velocity scale).
   double period() const { return period_; }
@@ -96,11 +88,11 @@ class Environment {
   /// A new episode: the plant at rest, the goal drawn from the pool with `seed` (reach-one: its
   /// target; reach-any: a candidate; track: a path between two pool points with random end
   /// velocities). observation.size() == observation_size().
-  void reset(std::uint64_t seed, std::span<double> observation);
+  void reset(std::uint64_t seed, std::span<double> observation) override;
   /// A new episode towards `goal` (evaluation: a listed target, the middle circle).
   void reset(const Goal& goal, std::span<double> observation);
   /// One control step under `action` (size action_size(), each clipped to [-1, 1]).
-  Transition step(std::span<const double> action, std::span<double> observation);
+  Transition step(std::span<const double> action, std::span<double> observation) override;
 
   /// The inputs an action holds (u = lower + (a + 1) / 2 (upper - lower), a clipped).
   void action_to_input(std::span<const double> action, Eigen::VectorXd& u) const;

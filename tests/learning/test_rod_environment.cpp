@@ -1,8 +1,8 @@
-// The learning environment (solvers/learning/environment.hpp, issue #15 item 1): the reward
+// The learning environment (solvers/learning/rod_environment.hpp, issue #15 item 1): the reward
 // (4.40) at its cases, the random paths' boundary conditions (closed form), the action map, and
 // episodes on the control robot (tests/control/control_support.hpp: the Table 2.1 rod, four
 // cables in [0, 0.5] N, alpha = 300 Pa s), implicit-midpoint N = 10, dt_c = 0.05 s.
-#define BOOST_TEST_MODULE learning_environment
+#define BOOST_TEST_MODULE learning_rod_environment
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
@@ -11,7 +11,7 @@
 
 #include "../control/control_support.hpp"
 #include "rodlab/solvers/control/inverse_statics.hpp"
-#include "rodlab/solvers/learning/environment.hpp"
+#include "rodlab/solvers/learning/rod_environment.hpp"
 #include "rodlab/solvers/learning/goal_pool.hpp"
 #include "rodlab/solvers/learning/polynomial_path.hpp"
 #include "rodlab/solvers/learning/reward.hpp"
@@ -83,7 +83,7 @@ BOOST_AUTO_TEST_CASE(random_path_meets_its_end_conditions) {
 
 // Actions in [-1, 1] map onto each cable's [0, 0.5] N linearly; beyond the box they are clipped.
 BOOST_AUTO_TEST_CASE(actions_map_onto_the_limits) {
-  l::Environment env(cable_robot(), options(l::LearningTask::reach_any), pool());
+  l::RodEnvironment env(cable_robot(), options(l::LearningTask::reach_any), pool());
   BOOST_TEST(env.action_size() == 4);
   BOOST_TEST(env.observation_size() == 9);
   Eigen::VectorXd u;
@@ -101,7 +101,7 @@ BOOST_AUTO_TEST_CASE(actions_map_onto_the_limits) {
 // rewards bit for bit; the reward is (4.40) of the reported error; the observation holds the
 // tip / L, its mean velocity over the step and the goal / L.
 BOOST_AUTO_TEST_CASE(episodes_repeat_with_their_seed) {
-  l::Environment env(cable_robot(), options(l::LearningTask::reach_any), pool());
+  l::RodEnvironment env(cable_robot(), options(l::LearningTask::reach_any), pool());
   std::vector<double> o1(9), o2(9);
   const std::vector<double> a{0.4, -1.0, -0.8, -1.0};
   std::vector<double> first, second;
@@ -150,7 +150,7 @@ BOOST_AUTO_TEST_CASE(holding_the_right_input_reaches_its_static_tip) {
   BOOST_TEST_REQUIRE(r.converged);
   l::Goal goal;
   goal.point = r.tip;
-  l::Environment env(scene, options(l::LearningTask::reach_one), {{r.tip}});
+  l::RodEnvironment env(scene, options(l::LearningTask::reach_one), {{r.tip}});
   std::vector<double> o(9), a(4);
   for (int k = 0; k < 4; ++k) a[k] = 2.0 * r.u[k] / 0.5 - 1.0;
   env.reset(goal, o);
@@ -168,7 +168,7 @@ BOOST_AUTO_TEST_CASE(holding_the_right_input_reaches_its_static_tip) {
 // control steps (4 s / 0.05 s = 80), its observation adds the goal's velocity; the state of K
 // nodes adds K (6 + 6) coordinates divided by their characteristic sizes.
 BOOST_AUTO_TEST_CASE(track_episodes_last_the_path) {
-  l::Environment env(cable_robot(), options(l::LearningTask::track, 3), pool());
+  l::RodEnvironment env(cable_robot(), options(l::LearningTask::track, 3), pool());
   BOOST_TEST(env.observation_size() == 12 + 3 * 12);
   std::vector<double> o(static_cast<std::size_t>(env.observation_size()));
   env.reset(3, o);
