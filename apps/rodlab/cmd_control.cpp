@@ -1,7 +1,9 @@
 // rodlab control SCENE --controller NAME --task TASK [options]: a controller on a task
 // (interface spec "Control and learning", docs/control.md).
 #include <array>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "rodlab/io/result_writer.hpp"
 #include "rodlab/io/text_format.hpp"
@@ -23,7 +25,11 @@ constexpr std::array<std::string_view, 3> kTasks{"reach", "hold", "track"};
 
 constexpr OptionSpec kControllerOption{
     "--controller", "NAME",
-    "quasi-static | nlsq-mpc | lqr | ilqr (policy: not yet built); default: nlsq-mpc"};
+    "quasi-static | nlsq-mpc | lqr | ilqr | policy (a trained policy, --policy); default: "
+    "nlsq-mpc"};
+constexpr OptionSpec kPolicyOption{"--policy", "FILE",
+                                   "the policy file of `rodlab train` (rodlab.policy/1), for "
+                                   "--controller policy"};
 constexpr OptionSpec kTaskOption{"--task", "reach|hold|track", "the task; default: control.task"};
 constexpr OptionSpec kHorizonOption{"--horizon", "H",
                                     "control steps predicted, integer >= 1; default: control.horizon"};
@@ -64,17 +70,6 @@ scene::Control read_control(OptionReader& reader, const scene::Scene& scene) {
   return c;
 }
 
-/// The plant's scheme and solver: --scheme, else dynamics.scheme, else implicit-midpoint (the
-/// thesis' NLSQ plant), the rest as `rodlab dynamic`'s; its step: dynamics.dt when set, else
-/// dt_control (plant.hpp).
-solvers::dynamics::DynamicSolveOptions read_plant(const SolveOptions& o, const scene::Scene& scene) {
-  const std::string scheme = scene.dynamics && scene.dynamics->scheme ? *scene.dynamics->scheme
-                                                                       : "implicit-midpoint";
-  solvers::dynamics::DynamicSolveOptions s = resolve_dynamic_solver(o, scene, scheme, "control").solve;
-  if (scene.dynamics && scene.dynamics->dt) s.dt = *scene.dynamics->dt;
-  return s;
-}
-
 std::string summarize(const result::ControlResult& r) {
   io::TextTable t;
   t.add_row({"scene", r.scene});
@@ -96,6 +91,21 @@ std::string summarize(const result::ControlResult& r) {
   return t.render();
 }
 
+/// --policy FILE: read and parsed (a missing or bad file is bad input, exit 2).
+solvers::learning::Policy read_policy(OptionReader& reader) {
+  const auto path = reader.text(kPolicyOption.name);
+  if (!path) throw UsageError("--controller policy needs --policy FILE (from `rodlab train`)");
+  std::ifstream in(*path, std::ios::binary);
+  if (!in) throw UsageError("--policy: cannot read " + *path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return solvers::learning::policy_from_json(text.str());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("--policy: " + *path + ": " + e.what());
+  }
+}
+
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);
   const SolveOptions options = read_solve_options(reader, solvers::Problem::dynamics, "control");
@@ -106,7 +116,13 @@ int run(const Invocation& inv) {
   run.controller = controller.value_or("nlsq-mpc");
   run.control = read_control(reader, scene);
   reader.finish();
-  run.solver = read_plant(options, scene);
+  run.solver = resolve_plant_solver(options, scene, "control");
+  if (run.controller == "policy") {
+    run.policy = read_policy(reader);
+    // a policy acts at its own step and nodes unless told otherwise
+    if (!inv.args.has(kDtControlOption.name)) run.control.dt_control = run.policy->dt_control;
+    if (!options.nodes) run.solver.nodes = run.policy->nodes;
+  }
   const result::ControlResult r = solvers::control::run_control(scene, run);
   if (options.out) io::write_result(*options.out, r);
   std::cout << summarize(r);
@@ -117,10 +133,11 @@ int run(const Invocation& inv) {
 }  // namespace
 
 const Command& control_command() {
-  static const std::array<OptionSpec, 15> options{
+  static const std::array<OptionSpec, 16> options{
       kControllerOption, kTaskOption,    kHorizonOption,     kIterationsOption, kDtControlOption,
       kSchemeOption,     kModelSchemeOption, kNodesOption,   kTolOption,        kGridOption,
-      kSeedOption,       kTargetsOption, kOutFileOption,     kSetOption,        kMaxWallTimeOption};
+      kSeedOption,       kTargetsOption, kOutFileOption,     kSetOption,        kMaxWallTimeOption,
+      kPolicyOption};
   static const Command command{
       "control",
       "SCENE [--controller NAME] [--task reach|hold|track] [options]",

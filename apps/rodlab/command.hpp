@@ -35,6 +35,7 @@ const Command& static_command();
 const Command& dynamic_command();
 const Command& schemes_command();
 const Command& study_command();
+const Command& train_command();
 const Command& validate_command();
 const Command& workspace_command();
 

@@ -246,4 +246,14 @@ void resolve_time_step(DynamicRun& run, const scene::Scene& scene) {
   run.automatic_dt = false;
 }
 
+solvers::dynamics::DynamicSolveOptions resolve_plant_solver(const SolveOptions& o,
+                                                            const scene::Scene& scene,
+                                                            std::string_view command) {
+  const std::string scheme = scene.dynamics && scene.dynamics->scheme ? *scene.dynamics->scheme
+                                                                       : "implicit-midpoint";
+  solvers::dynamics::DynamicSolveOptions s = resolve_dynamic_solver(o, scene, scheme, command).solve;
+  if (scene.dynamics && scene.dynamics->dt) s.dt = *scene.dynamics->dt;
+  return s;
+}
+
 }  // namespace rodlab::cli

@@ -124,4 +124,12 @@ DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& 
 DynamicRun resolve_dynamic_solver(const SolveOptions& options, const scene::Scene& scene,
                                   std::string_view scene_scheme, std::string_view command);
 
+/// The solver of a controller's plant (`rodlab control`, `rodlab train`): --scheme, else
+/// dynamics.scheme, else implicit-midpoint (the thesis' plant), the rest as `rodlab dynamic`'s;
+/// its step: dynamics.dt when set, else the plant's (dt_control, or stable steps for
+/// variational; solvers/control/plant.hpp).
+solvers::dynamics::DynamicSolveOptions resolve_plant_solver(const SolveOptions& options,
+                                                            const scene::Scene& scene,
+                                                            std::string_view command);
+
 }  // namespace rodlab::cli

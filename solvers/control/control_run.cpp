@@ -20,6 +20,7 @@
 #include "rodlab/solvers/control/plant.hpp"
 #include "rodlab/solvers/control/plant_ilqr.hpp"
 #include "rodlab/solvers/control/static_targets.hpp"
+#include "rodlab/solvers/learning/observer.hpp"
 
 namespace rodlab::solvers::control {
 namespace {
@@ -80,6 +81,11 @@ void choose_targets(const scene::Scene& scene, const ControlRunOptions& o, Contr
   if (!c.targets.empty()) {
     out.targets.drawn_from = result::TargetSource::scene;
     out.targets.points = c.targets;
+    return;
+  }
+  if (c.task == scene::ControlTask::reach && o.policy && o.policy->goal) {
+    out.targets.drawn_from = result::TargetSource::policy;
+    out.targets.points = {*o.policy->goal};
     return;
   }
   if (c.task == scene::ControlTask::reach && o.controller != "quasi-static") {
@@ -244,6 +250,57 @@ class LqrController final : public DynamicController {
   HoldGain gain_;
 };
 
+/// A trained policy (learning/policy.hpp): one network evaluation per control step on the
+/// observation of learning/observer.hpp, the goal's velocity from the horizon's first two targets.
+class PolicyController final : public DynamicController {
+ public:
+  PolicyController(const Plant& plant, const learning::Policy& p, int nodes)
+      : network_(p.network), lower_(p.lower), upper_(p.upper),
+        observer_(plant, nodes, p.layout) {
+    const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::abs(b); };
+    RODLAB_THROW_UNLESS(p.nodes == nodes, "policy: trained at N = {}, the plant has N = {} "
+                        "(--nodes {})", p.nodes, nodes, p.nodes);
+    RODLAB_THROW_UNLESS(near(p.dt_control, plant.dt_control()),
+                        "policy: trained at dt_control = {:g} s, the plant steps {:g} s "
+                        "(--dt-control {:g})",
+                        p.dt_control, plant.dt_control(), p.dt_control);
+    RODLAB_THROW_UNLESS(p.lower.size() == plant.input_count() &&
+                            p.lower == plant.lower() && p.upper == plant.upper(),
+                        "policy: trained for {} inputs with other limits than the scene's {}",
+                        p.lower.size(), plant.input_count());
+    RODLAB_THROW_UNLESS(near(p.length, plant.length()) && near(p.period, observer_.period()) &&
+                            network_.input_size() == observer_.size(),
+                        "policy: trained on a rod with L = {:g} m and T = {:g} s ({} observations), "
+                        "the scene's has L = {:g} m and T = {:g} s ({})",
+                        p.length, p.period, network_.input_size(), plant.length(),
+                        observer_.period(), observer_.size());
+    o_.resize(observer_.size());
+    a_.resize(network_.output_size());
+  }
+  std::string start(const Plant&, const Vector3&) override {
+    tip_before_.reset();
+    return {};
+  }
+  Decision decide(Plant& plant, std::span<const Vector3> horizon) override {
+    const Vector3 velocity = horizon.size() > 1
+                                 ? Vector3((horizon[1] - horizon[0]) / plant.dt_control())
+                                 : Vector3::Zero();
+    observer_.observe(plant, tip_before_, horizon.front(), velocity,
+                      std::span<double>(o_.data(), o_.size()));
+    network_.infer(o_, a_);
+    Eigen::VectorXd u = lower_ + 0.5 * (a_.array().min(1.0).max(-1.0) + 1.0).matrix()
+                                           .cwiseProduct(upper_ - lower_);
+    tip_before_ = plant.tip();
+    return {{}, u.cwiseMax(lower_).cwiseMin(upper_), 1};
+  }
+
+ private:
+  learning::Mlp<double> network_;
+  Eigen::VectorXd lower_, upper_, o_, a_;
+  learning::Observer observer_;
+  std::optional<Vector3> tip_before_;
+};
+
 /// A controller on the dynamic plant: every episode from the plant's initial state.
 void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlResult& out) {
   const scene::Control& c = o.control;
@@ -270,7 +327,10 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
   }
   Plant& model = own_model ? *own_model : plant;
   std::unique_ptr<DynamicController> controller;
-  if (o.controller == "lqr")
+  if (o.controller == "policy") {
+    RODLAB_THROW_UNLESS(o.policy.has_value(), "--controller policy needs a policy (--policy FILE)");
+    controller = std::make_unique<PolicyController>(model, *o.policy, mo.solver.nodes);
+  } else if (o.controller == "lqr")
     controller = std::make_unique<LqrController>(scene, mo, c);
   else if (o.controller == "ilqr")
     controller = std::make_unique<IlqrController>(model, c);
@@ -280,7 +340,8 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
   const bool track = c.task == scene::ControlTask::track;
   const int episodes = track ? 1 : static_cast<int>(out.targets.points.size());
   const int steps = track ? track_steps(c) : c.max_steps;
-  std::vector<Vector3> horizon(std::max(1, c.horizon));
+  // a policy observes the goal's velocity from the first two targets
+  std::vector<Vector3> horizon(std::max(o.controller == "policy" ? 2 : 1, c.horizon));
   for (int e = 0; e < episodes && out.converged; ++e) {
     plant.restore(initial);
     auto target_at = [&](double t) {
@@ -383,10 +444,11 @@ void summarise(const ControlResult& in, double L, double dt_control, result::Con
 result::ControlResult run_control(const scene::Scene& scene, const ControlRunOptions& options) {
   const scene::Control& c = options.control;
   const bool mpc = options.controller == "nlsq-mpc";
-  const bool dynamic = mpc || options.controller == "lqr" || options.controller == "ilqr";
+  const bool dynamic = mpc || options.controller == "lqr" || options.controller == "ilqr" ||
+                       options.controller == "policy";
   RODLAB_THROW_UNLESS(dynamic || options.controller == "quasi-static",
-                      "--controller: '{}' is not available yet (built: quasi-static, nlsq-mpc, "
-                      "lqr, ilqr)",
+                      "--controller: '{}' is not available (quasi-static, nlsq-mpc, lqr, ilqr, "
+                      "policy)",
                       options.controller);
   RODLAB_THROW_UNLESS(c.task != scene::ControlTask::track || c.trajectory.has_value(),
                       "control.task track needs control.trajectory");

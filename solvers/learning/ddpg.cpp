@@ -137,7 +137,7 @@ DdpgLog Ddpg::train(LearningEnvironment& env, long samples,
       e.final_error = tr.error;
       e.min_error = std::min(e.min_error, tr.error);
       e.success = e.success || tr.success;
-      e.failed = e.failed || tr.failed;
+      if (tr.failed) e.failed = true, e.reason = tr.reason;
       buffer.add(s, a, tr.reward, s2, tr.terminal);
       std::swap(s, s2);
       if (log.samples >= options_.warmup && buffer.size() >= options_.batch_size)

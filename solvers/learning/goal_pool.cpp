@@ -47,6 +47,7 @@ GoalPool make_goal_pool(const scene::Scene& scene, const EnvironmentOptions& e,
     const auto r = statics.solve(tip);
     if (r.converged && !r.reached) {
       pool.points = {tip};
+      pool.beyond_static = r.error;
       return pool;
     }
   }

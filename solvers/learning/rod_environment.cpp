@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "rodlab/check.hpp"
-#include "rodlab/rod/characteristics.hpp"
 #include "rodlab/scene/trajectory.hpp"
 #include "rodlab/solvers/learning/reward.hpp"
 
@@ -57,7 +56,10 @@ double Goal::duration() const {
 
 RodEnvironment::RodEnvironment(const scene::Scene& scene, const EnvironmentOptions& options, GoalPool pool)
     : options_(options), pool_(std::move(pool)), plant_(scene, options.plant),
-      initial_(plant_.snapshot()) {
+      initial_(plant_.snapshot()),
+      observer_(plant_, options.plant.solver.nodes,
+                {.goal_velocity = options.task == LearningTask::track,
+                 .state_nodes = options.state_nodes}) {
   RODLAB_THROW_UNLESS(options.beta > 0.0 && options.beta <= 1.0,
                       "learning: beta must be in (0, 1] (got {:g})", options.beta);
   RODLAB_THROW_UNLESS(options.threshold > 0.0 && options.max_steps >= 1 &&
@@ -69,21 +71,6 @@ RodEnvironment::RodEnvironment(const scene::Scene& scene, const EnvironmentOptio
   RODLAB_THROW_UNLESS(options.task != LearningTask::track || pool_.points.size() >= 2,
                       "learning: track needs at least two points in the pool (got {})",
                       pool_.points.size());
-  const auto c = rod::characteristics(plant_.problem().model(), options.plant.solver.nodes,
-                                      rod::TipSupport::free);
-  period_ = 1.0 / c.first_bending_frequency_hz;
-  // the tangent coordinates of state_nodes segments and nodes, evenly spaced to the tip
-  const int n = options.plant.solver.nodes;
-  const int strains = plant_.state_size() / (n - 1) - 6;  // 6 (Cosserat) or 3 (Kirchhoff)
-  const int K = std::min(options.state_nodes, n - 1);
-  for (int k = 1; k <= K; ++k) {
-    const int node = static_cast<int>(std::lround(static_cast<double>(k) * (n - 1) / K));
-    for (int i = 0; i < strains; ++i) state_index_.push_back((node - 1) * strains + i);
-    for (int i = 0; i < 6; ++i) state_index_.push_back((n - 1) * strains + (node - 1) * 6 + i);
-  }
-  observation_size_ = (options.task == LearningTask::track ? 12 : 9) +
-                      static_cast<int>(state_index_.size());
-  x_.resize(plant_.state_size());
   u_.resize(plant_.input_count());
 }
 
@@ -170,26 +157,11 @@ Transition RodEnvironment::step(std::span<const double> action, std::span<double
 }
 
 void RodEnvironment::observe(std::span<double> o) {
-  RODLAB_THROW_UNLESS(static_cast<int>(o.size()) == observation_size_,
-                      "learning: expected an observation of {} values, got {}", observation_size_,
-                      o.size());
-  const double L = length(), dt = plant_.dt_control();
-  const lie::Vector3 p = plant_.tip();
-  const lie::Vector3 v = steps_ == 0 ? lie::Vector3::Zero() : lie::Vector3((p - tip_before_) / dt);
   // the goal at the end of the coming control step
-  const double t_next = time() + dt;
-  const lie::Vector3 target = goal_.position(t_next);
-  std::size_t i = 0;
-  for (int k = 0; k < 3; ++k) o[i++] = p[k] / L;
-  for (int k = 0; k < 3; ++k) o[i++] = v[k] * period_ / L;
-  for (int k = 0; k < 3; ++k) o[i++] = target[k] / L;
-  if (options_.task == LearningTask::track) {
-    const lie::Vector3 vd = goal_.velocity(t_next);
-    for (int k = 0; k < 3; ++k) o[i++] = vd[k] * period_ / L;
-  }
-  if (state_index_.empty()) return;
-  plant_.read_state(std::span<double>(x_.data(), x_.size()));
-  for (const int j : state_index_) o[i++] = x_[j] / plant_.state_scale()[j];
+  const double t_next = time() + plant_.dt_control();
+  std::optional<lie::Vector3> before;
+  if (steps_ > 0) before = tip_before_;
+  observer_.observe(plant_, before, goal_.position(t_next), goal_.velocity(t_next), o);
 }
 
 }  // namespace rodlab::solvers::learning

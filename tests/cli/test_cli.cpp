@@ -88,7 +88,7 @@ BOOST_AUTO_TEST_CASE(no_arguments_is_a_usage_error) {
 BOOST_AUTO_TEST_CASE(unknown_subcommand_lists_the_valid_ones) {
   Sandbox box;
   expect_bad_input(box, "frobnicate",
-                   {"frobnicate", "check, static, dynamic, control, schemes, study, validate, workspace"});
+                   {"frobnicate", "check, static, dynamic, control, schemes, study, train, validate, workspace"});
   expect_bad_input(box, "help frobnicate", {"frobnicate", "check, static"});
   expect_bad_input(box, quote(kScene), {"unknown subcommand", "check, static"});  // forgot `check`
   expect_bad_input(box, "--nodes 3", {"unknown option '--nodes'"});

@@ -262,6 +262,8 @@ const char* target_source_name(result::TargetSource source) {
       return "static-workspace";
     case result::TargetSource::dynamic_workspace:
       return "dynamic-workspace";
+    case result::TargetSource::policy:
+      return "policy";
   }
   return "unknown";
 }

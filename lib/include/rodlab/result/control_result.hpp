@@ -18,6 +18,7 @@ enum class TargetSource {
   trajectory,         ///< the scene's control.trajectory (track)
   static_workspace,   ///< drawn with the seed from the static workspace ("static-workspace")
   dynamic_workspace,  ///< drawn with the seed from the dynamic workspace ("dynamic-workspace")
+  policy,             ///< the target a reach-one policy was trained for ("policy")
 };
 
 struct ControlTargets {

@@ -13,15 +13,19 @@
 // Targets: control.targets, else `target_count` drawn with `seed` from the static workspace
 // (static_targets.hpp: reachable by construction). Controllers: `nlsq-mpc` (nlsq_mpc.hpp) on a
 // dynamics scheme; `lqr` (reach, hold; lqr_hold.hpp) about the equilibrium of the inverse
-// statics' inputs for each target, its gain designed at the episode's start; `quasi-static` (inverse_statics.hpp) on the statics: one inverse-statics
+// statics' inputs for each target, its gain designed at the episode's start; `policy` a trained
+// policy (learning/policy.hpp: one network evaluation per step; reach-one's target by default);
+// `quasi-static` (inverse_statics.hpp) on the statics: one inverse-statics
 // solve per target (reach, hold: `steps` counts its updates) or per control step (track).
 // A solver failure ends the run (converged false, the reason); a target the quasi-static
 // controller cannot reach (outside the workspace) is reported with its closest tip and reason.
+#include <optional>
 #include <string>
 
 #include "rodlab/result/control_result.hpp"
 #include "rodlab/scene/scene.hpp"
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
+#include "rodlab/solvers/learning/policy.hpp"
 
 namespace rodlab::solvers::control {
 
@@ -31,6 +35,9 @@ struct ControlRunOptions {
   /// The dynamics scheme of the plant (scheme, nodes, tol, grid, ...); its max_iterations is
   /// raised to the plant's (plant.hpp).
   dynamics::DynamicSolveOptions solver;
+  /// `policy`: the trained policy (learning/policy.hpp) acting on the plant; its nodes,
+  /// dt_control, inputs and observation scales must be the plant's.
+  std::optional<learning::Policy> policy;
 };
 
 /// Runs the task. Throws std::invalid_argument for bad options (an unknown or not yet available

@@ -17,6 +17,7 @@
 #include <functional>
 #include <random>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -42,7 +43,7 @@ struct DdpgOptions {
   double tau = 1e-3;                   ///< soft target updates (the paper's)
   int batch_size = 64;                 ///< the paper's 64
   long buffer_capacity = 1'000'000;    ///< the paper's 1e6 (at most the samples of a run)
-  long warmup = 1000;                  ///< steps of uniform random actions before learning
+  long warmup = 0;                     ///< steps of uniform random actions before learning
   int updates_per_step = 1;
   double noise_theta = 0.15;  ///< Ornstein-Uhlenbeck mean reversion per step (the paper's)
   double noise_sigma = 0.2;   ///< its scale per step (the paper's), in action units
@@ -57,6 +58,7 @@ struct DdpgEpisode {
   double return_sum = 0.0;  ///< undiscounted sum of rewards
   double final_error = 0.0, min_error = 0.0;
   bool success = false, failed = false;
+  std::string reason;  ///< why the environment's step failed (failed)
 };
 
 struct DdpgLog {

@@ -6,15 +6,8 @@
 // starts from the plant's initial state (at rest) and aims at a goal: a point (reach-one,
 // reach-any) or a path p_des(t) (track). The reward is (4.40) with beta (reward.hpp).
 //
-// Observation (all dimensionless; L the rod length, T the first bending period):
-//   [0, 3)    the tip position p / L (world frame)
-//   [3, 6)    the tip's mean velocity over the last control step, (p_k - p_(k-1)) / dt_c * T / L
-//             (zero at the episode's start)
-//   [6, 9)    the goal's position p_des(t) / L at the end of the coming control step
-//   [9, 12)   track only: the goal's velocity there, v_des * T / L
-//   then, with state_nodes = K > 0: the plant's tangent coordinates (plant.hpp: segment strains
-//             minus xi*, node velocities) of K segments and nodes evenly spaced to the tip, each
-//             divided by its characteristic size (Plant::state_scale).
+// Observation: observer.hpp (the tip, its mean velocity over the last step, the goal, the
+// path's velocity for track, optionally the state of a few nodes; dimensionless).
 //
 // An episode ends with success (reach: the tip within threshold L of the target, thesis 4.4.2:
 // 5 %), at max_steps (reach) or at the path's end (track), or when the plant's step fails
@@ -32,6 +25,7 @@
 #include "rodlab/scene/scene.hpp"
 #include "rodlab/solvers/control/plant.hpp"
 #include "rodlab/solvers/learning/learning_environment.hpp"
+#include "rodlab/solvers/learning/observer.hpp"
 #include "rodlab/solvers/learning/polynomial_path.hpp"
 
 namespace rodlab::solvers::learning {
@@ -71,6 +65,8 @@ struct Goal {
 /// the dynamic workspace); track, points of the static workspace (the paths' ends).
 struct GoalPool {
   std::vector<lie::Vector3> points;
+  /// reach-one: how far its target lies from the closest quasi-static tip [m]; 0 otherwise.
+  double beyond_static = 0.0;
 };
 
 class RodEnvironment final : public LearningEnvironment {
@@ -78,11 +74,11 @@ class RodEnvironment final : public LearningEnvironment {
   /// Throws std::invalid_argument for bad options, an empty pool, or what the plant refuses.
   RodEnvironment(const scene::Scene& scene, const EnvironmentOptions& options, GoalPool pool);
 
-  int observation_size() const override { return observation_size_; }
+  int observation_size() const override { return observer_.size(); }
   int action_size() const override { return plant_.input_count(); }
   double length() const { return plant_.length(); }
   /// T, the first bending period [s] (the observation's velocity scale).
-  double period() const { return period_; }
+  double period() const { return observer_.period(); }
   const EnvironmentOptions& options() const { return options_; }
 
   /// A new episode: the plant at rest, the goal drawn from the pool with `seed` (reach-one: its
@@ -113,10 +109,8 @@ class RodEnvironment final : public LearningEnvironment {
   control::Plant plant_;
   control::PlantSnapshot initial_;
   Goal goal_;
-  double period_ = 0.0;  ///< T, the first bending period [s]
-  int observation_size_ = 0;
-  std::vector<int> state_index_;  ///< tangent coordinates observed (state_nodes)
-  Eigen::VectorXd u_, x_;
+  Observer observer_;
+  Eigen::VectorXd u_;
   lie::Vector3 tip_before_ = lie::Vector3::Zero();
   int steps_ = 0;
   double error_sum_ = 0.0;

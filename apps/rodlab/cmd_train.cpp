@@ -1,0 +1,224 @@
+// rodlab train SCENE --algorithm ddpg|gps --task reach-one|reach-any|track --samples K: trains a
+// policy on the scene's rod (interface spec "Control and learning", docs/learning.md).
+#include <array>
+#include <chrono>
+#include <deque>
+#include <fstream>
+#include <iostream>
+
+#include "rodlab/check.hpp"
+#include "rodlab/io/atomic_file.hpp"
+#include "rodlab/io/text_format.hpp"
+#include "rodlab/io/text_table.hpp"
+#include "rodlab/solvers/learning/ddpg.hpp"
+#include "rodlab/solvers/learning/goal_pool.hpp"
+#include "rodlab/solvers/learning/policy.hpp"
+#include "rodlab/solvers/learning/rod_environment.hpp"
+
+#include "command.hpp"
+#include "common_options.hpp"
+#include "errors.hpp"
+#include "exit_status.hpp"
+
+namespace rodlab::cli {
+namespace {
+
+namespace l = solvers::learning;
+
+constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
+constexpr std::array<std::string_view, 2> kAlgorithms{"ddpg", "gps"};
+constexpr std::array<std::string_view, 3> kTasks{"reach-one", "reach-any", "track"};
+
+constexpr OptionSpec kAlgorithmOption{"--algorithm", "ddpg|gps",
+                                      "the learning algorithm (gps: not yet built); required"};
+constexpr OptionSpec kTaskOption{"--task", "reach-one|reach-any|track", "the task; required"};
+constexpr OptionSpec kSamplesOption{"--samples", "K",
+                                    "environment steps to train on, integer >= 1; required"};
+constexpr OptionSpec kSeedOption{"--seed", "S",
+                                 "seed of every random draw, integer >= 0; default: 1"};
+constexpr OptionSpec kJobsOption{"--jobs", "J",
+                                 "environments in parallel, integer >= 1 (only 1 so far); "
+                                 "default: 1"};
+constexpr OptionSpec kDtControlOption{"--dt-control", "X",
+                                      "control step [s] > 0; default: control.dt_control, else "
+                                      "0.05 (the thesis')"};
+constexpr OptionSpec kPolicyOutOption{
+    "--out", "POLICY", "write the policy to POLICY (.json); default: policy.json"};
+
+/// How often the progress line is printed [s].
+constexpr double kProgressEvery = 10.0;
+/// Episodes the progress line's success rate and return average over.
+constexpr std::size_t kProgressWindow = 100;
+
+struct TrainSettings {
+  std::string algorithm, task;
+  long samples = 0;
+  std::uint64_t seed = 1;
+  double dt_control = 0.05;
+  std::filesystem::path out = "policy.json";
+};
+
+TrainSettings read_settings(OptionReader& reader, const SolveOptions& o) {
+  TrainSettings t;
+  const auto algorithm = reader.choice(kAlgorithmOption.name, kAlgorithms);
+  const auto task = reader.choice(kTaskOption.name, kTasks);
+  const auto samples = reader.integer(kSamplesOption.name, 1);
+  if (!reader.text(kAlgorithmOption.name)) reader.problem("--algorithm: required (ddpg or gps)");
+  if (!reader.text(kTaskOption.name))
+    reader.problem("--task: required (reach-one, reach-any or track)");
+  if (!reader.text(kSamplesOption.name)) reader.problem("--samples: required (an integer >= 1)");
+  if (algorithm == "gps")
+    reader.problem("--algorithm: gps is not built yet (issue #15); use ddpg");
+  if (const auto jobs = reader.integer(kJobsOption.name, 1); jobs && *jobs > 1)
+    reader.problem("--jobs: parallel environments are not built yet (issue #15): 1 only (got " +
+                   std::to_string(*jobs) + ")");
+  if (const auto seed = reader.integer(kSeedOption.name, 0)) t.seed = static_cast<std::uint64_t>(*seed);
+  if (const auto dt = reader.positive(kDtControlOption.name)) t.dt_control = *dt;
+  if (o.out) {
+    if (o.out->extension() != ".json")
+      reader.problem("--out: a policy file is JSON (.json) (got " + o.out->string() + ")");
+    t.out = *o.out;
+  }
+  t.algorithm = algorithm.value_or("");
+  t.task = task.value_or("");
+  t.samples = samples.value_or(0);
+  return t;
+}
+
+/// The progress line: samples, episodes, the last episodes' mean return and success rate, and
+/// the sample rate.
+class Progress {
+ public:
+  explicit Progress(long samples) : samples_(samples), start_(Clock::now()), last_(start_) {}
+  void operator()(const l::DdpgEpisode& e) {
+    window_.push_back(e);
+    if (window_.size() > kProgressWindow) window_.pop_front();
+    ++episodes_;
+    const auto now = Clock::now();
+    if (std::chrono::duration<double>(now - last_).count() < kProgressEvery && e.samples < samples_)
+      return;
+    last_ = now;
+    double returns = 0.0, successes = 0.0;
+    for (const auto& w : window_) returns += w.return_sum, successes += w.success ? 1.0 : 0.0;
+    const double seconds = std::chrono::duration<double>(now - start_).count();
+    std::cerr << "samples " << e.samples << "/" << samples_ << ", episodes " << episodes_
+              << ", mean return " << io::format_number(returns / window_.size())
+              << ", success " << io::format_number(100.0 * successes / window_.size())
+              << " % (last " << window_.size() << "), "
+              << io::format_number(e.samples / std::max(seconds, 1e-9)) << " samples/s\n";
+  }
+  /// The success rate over the last episodes.
+  double success_rate() const {
+    double s = 0.0;
+    for (const auto& w : window_) s += w.success ? 1.0 : 0.0;
+    return window_.empty() ? 0.0 : s / window_.size();
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  long samples_, episodes_ = 0;
+  Clock::time_point start_, last_;
+  std::deque<l::DdpgEpisode> window_;
+};
+
+int run(const Invocation& inv) {
+  OptionReader reader(inv.args);
+  const SolveOptions options = read_solve_options(reader, solvers::Problem::dynamics, "train");
+  TrainSettings t = read_settings(reader, options);
+  reader.finish();
+  const scene::Scene scene = load_checked_scene(options);
+  if (!inv.args.has(kDtControlOption.name) && scene.control) t.dt_control = scene.control->dt_control;
+
+  l::EnvironmentOptions eo;
+  eo.plant.solver = resolve_plant_solver(options, scene, "train");
+  eo.plant.solver.max_iterations =
+      std::max(eo.plant.solver.max_iterations, solvers::control::PlantOptions::kShotsPerStep);
+  eo.plant.dt_control = t.dt_control;
+  eo.task = l::task_from_name(t.task);
+  if (scene.control) eo.threshold = scene.control->threshold;
+  l::GoalPoolOptions gp;
+  gp.seed = t.seed;
+  const l::GoalPool pool = l::make_goal_pool(scene, eo, gp);
+  l::RodEnvironment env(scene, eo, pool);
+
+  l::DdpgOptions d;
+  d.seed = t.seed;
+  l::Ddpg ddpg(env.observation_size(), env.action_size(), d);
+  Progress progress(t.samples);
+  const l::DdpgLog log = ddpg.train(env, t.samples, std::ref(progress));
+
+  l::Policy p;
+  p.algorithm = t.algorithm;
+  p.task = t.task;
+  p.scene = scene.name;
+  p.scheme = eo.plant.solver.scheme;
+  p.nodes = eo.plant.solver.nodes;
+  p.dt_control = eo.plant.dt_control;
+  p.layout = {.goal_velocity = eo.task == l::LearningTask::track, .state_nodes = eo.state_nodes};
+  p.length = env.length();
+  p.period = env.period();
+  p.lower = env.plant().lower();
+  p.upper = env.plant().upper();
+  p.training = {log.samples, static_cast<long>(log.episodes.size()), t.seed, log.wall_time_s};
+  if (eo.task == l::LearningTask::reach_one) p.goal = pool.points.front();
+  p.network = ddpg.actor();
+  io::write_file_atomically(t.out, l::to_json(p));
+
+  int failed = 0;
+  std::string first_failure;
+  for (const auto& e : log.episodes)
+    if (e.failed && failed++ == 0) first_failure = e.reason;
+  io::TextTable table;
+  table.add_row({"trained", t.algorithm + " on " + t.task + ", " + p.scheme + " N = " +
+                                std::to_string(p.nodes) + ", dt_control " +
+                                io::format_number(p.dt_control) + " s, seed " +
+                                std::to_string(t.seed)});
+  if (eo.task == l::LearningTask::reach_one) {
+    const auto& g = pool.points.front();
+    table.add_row({"target", rodlab::format("[{:g}, {:g}, {:g}] m, {:g} mm from the closest "
+                                            "quasi-static tip",
+                                            g[0], g[1], g[2], 1e3 * pool.beyond_static)});
+  } else {
+    table.add_row({"goals", std::to_string(pool.points.size()) + " candidate points"});
+  }
+  table.add_row({"samples", std::to_string(log.samples) + " in " +
+                                std::to_string(log.episodes.size()) + " episodes (" +
+                                std::to_string(failed) + " ended by a failed step)"});
+  if (failed > 0) table.add_row({"first failure", first_failure});
+  table.add_row({"success", io::format_number(100.0 * progress.success_rate()) +
+                                " % of the last episodes"});
+  table.add_row({"wall time", io::format_number(log.wall_time_s) + " s (" +
+                                  io::format_number(log.samples / std::max(log.wall_time_s, 1e-9)) +
+                                  " samples/s)"});
+  std::cout << table.render() << "policy written to " << t.out.string() << '\n';
+  return kSolved;
+}
+
+}  // namespace
+
+const Command& train_command() {
+  static const std::array<OptionSpec, 13> options{
+      kAlgorithmOption, kTaskOption,  kSamplesOption,   kSeedOption, kJobsOption,
+      kDtControlOption, kSchemeOption, kNodesOption,    kTolOption,  kGridOption,
+      kPolicyOutOption, kSetOption,   kMaxWallTimeOption};
+  static const Command command{
+      "train",
+      "SCENE --algorithm ddpg|gps --task reach-one|reach-any|track --samples K [options]",
+      "train a control policy by reinforcement learning (DDPG) on the scene's rod",
+      "Trains a policy (docs/learning.md) on the scene's rod: the plant of `rodlab control`\n"
+      "(--scheme, else dynamics.scheme, else implicit-midpoint; --nodes; --dt-control), the\n"
+      "task's goals drawn with --seed (reach-one: one point of the dynamic workspace outside\n"
+      "the static one; reach-any: any point of the dynamic workspace; track: random paths\n"
+      "through the static workspace), the reward (4.40) with beta = 0.3. Prints a progress\n"
+      "line every 10 s on long runs and writes the policy (rodlab.policy/1, JSON) atomically;\n"
+      "`rodlab control SCENE --controller policy --policy POLICY` runs it.\n"
+      "\n"
+      "Exit status: 0 trained (the policy is written); 2 bad input or usage (nothing is\n"
+      "written).\n",
+      kPositionals,
+      options,
+      &run};
+  return command;
+}
+
+}  // namespace rodlab::cli
