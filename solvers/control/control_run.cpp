@@ -301,6 +301,14 @@ class PolicyController final : public DynamicController {
   std::optional<Vector3> tip_before_;
 };
 
+/// A solver failure ends its episode (the reason in it) and marks the run: not converged, the
+/// first failure's reason. The next episode starts from the initial state again.
+void fail(ControlResult& out, ControlEpisode& episode, const std::string& why) {
+  out.converged = false;
+  if (!out.reason) out.reason = why;
+  episode.reason = why;
+}
+
 /// A controller on the dynamic plant: every episode from the plant's initial state.
 void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlResult& out) {
   const scene::Control& c = o.control;
@@ -342,7 +350,7 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
   const int steps = track ? track_steps(c) : c.max_steps;
   // a policy observes the goal's velocity from the first two targets
   std::vector<Vector3> horizon(std::max(o.controller == "policy" ? 2 : 1, c.horizon));
-  for (int e = 0; e < episodes && out.converged; ++e) {
+  for (int e = 0; e < episodes; ++e) {
     plant.restore(initial);
     auto target_at = [&](double t) {
       return track ? scene::position(*c.trajectory, t) : out.targets.points[e];
@@ -366,15 +374,13 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
       const Decision d = controller->decide(model, horizon);
       const double solve_time = seconds_since(t0);
       if (!d.failure.empty()) {
-        out.converged = false;
-        out.reason = episode.reason = d.failure;
+        fail(out, episode, d.failure);
         break;
       }
       plant.set_input(d.u);
       const dynamics::StepStatus status = plant.advance();
       if (!status.ok) {
-        out.converged = false;
-        out.reason = episode.reason = "the plant's step failed: " + status.reason;
+        fail(out, episode, "the plant's step failed: " + status.reason);
         break;
       }
       record(out, e, t, d.u, plant.tip(), target_at(t), solve_time, d.iterations);

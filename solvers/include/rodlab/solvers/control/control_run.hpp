@@ -17,7 +17,8 @@
 // policy (learning/policy.hpp: one network evaluation per step; reach-one's target by default);
 // `quasi-static` (inverse_statics.hpp) on the statics: one inverse-statics
 // solve per target (reach, hold: `steps` counts its updates) or per control step (track).
-// A solver failure ends the run (converged false, the reason); a target the quasi-static
+// A solver failure ends its episode (the episode's reason) and marks the run (converged false,
+// the first failure's reason); the other episodes still run. A target the quasi-static
 // controller cannot reach (outside the workspace) is reported with its closest tip and reason.
 #include <optional>
 #include <string>
