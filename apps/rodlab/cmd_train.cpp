@@ -121,6 +121,36 @@ class Progress {
   std::deque<l::DdpgEpisode> window_;
 };
 
+/// The scene's learning section over the solvers' defaults (each absent field keeps it).
+void apply_learning(const scene::Learning& s, l::EnvironmentOptions& e, l::GoalPoolOptions& g,
+                    l::DdpgOptions& d) {
+  const auto set = [](auto& to, const auto& from) {
+    if (from) to = *from;
+  };
+  set(e.beta, s.beta);
+  set(e.max_steps, s.max_steps);
+  set(e.state_nodes, s.state_nodes);
+  set(e.track_duration, s.track_duration);
+  set(e.track_end_speed, s.track_end_speed);
+  set(g.dynamic_holds, s.dynamic_holds);
+  set(g.static_points, s.static_points);
+  const scene::LearningDdpg& q = s.ddpg;
+  set(d.actor_hidden, q.actor_hidden);
+  set(d.critic_hidden, q.critic_hidden);
+  if (q.activation) d.hidden = l::parse_activation(*q.activation);
+  set(d.actor_learning_rate, q.actor_learning_rate);
+  set(d.critic_learning_rate, q.critic_learning_rate);
+  set(d.gamma, q.gamma);
+  set(d.tau, q.tau);
+  set(d.batch_size, q.batch_size);
+  set(d.buffer_capacity, q.buffer_capacity);
+  set(d.warmup, q.warmup);
+  set(d.updates_per_step, q.updates_per_step);
+  set(d.noise_theta, q.noise_theta);
+  set(d.noise_sigma, q.noise_sigma);
+  set(d.final_layer_scale, q.final_layer_scale);
+}
+
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);
   const SolveOptions options = read_solve_options(reader, solvers::Problem::dynamics, "train");
@@ -138,11 +168,12 @@ int run(const Invocation& inv) {
   if (scene.control) eo.threshold = scene.control->threshold;
   l::GoalPoolOptions gp;
   gp.seed = t.seed;
+  l::DdpgOptions d;
+  d.seed = t.seed;
+  if (scene.learning) apply_learning(*scene.learning, eo, gp, d);
   const l::GoalPool pool = l::make_goal_pool(scene, eo, gp);
   l::RodEnvironment env(scene, eo, pool);
 
-  l::DdpgOptions d;
-  d.seed = t.seed;
   l::Ddpg ddpg(env.observation_size(), env.action_size(), d);
   Progress progress(t.samples);
   const l::DdpgLog log = ddpg.train(env, t.samples, std::ref(progress));

@@ -47,6 +47,23 @@ BOOST_AUTO_TEST_CASE(ddpg_learns_to_reach_one_point) {
     for (double v : u) BOOST_TEST((v >= 0.0 && v <= 0.5));
 }
 
+// The scene's learning section reaches the trainer: a 16-unit actor (learning.ddpg.actor_hidden)
+// gives a 9-16-4 network in the policy file; the rest keeps the defaults (tanh outputs).
+BOOST_AUTO_TEST_CASE(learning_section_sets_the_hyper_parameters) {
+  Sandbox box;
+  const Run t = box.run("train " + kScene +
+                        " --algorithm ddpg --task reach-any --samples 40 --out p.json "
+                        "--set 'learning.ddpg.actor_hidden=[16]' --set learning.ddpg.activation=tanh");
+  BOOST_TEST_REQUIRE(t.status == 0, t.err);
+  const auto p = nlohmann::json::parse(read(box.work / "p.json"));
+  BOOST_TEST(p["network"]["sizes"] == nlohmann::json::array({9, 16, 4}));
+  BOOST_TEST(p["network"]["hidden_activation"] == "tanh");
+  BOOST_TEST(p["network"]["output_activation"] == "tanh");
+  expect_bad_input(box, "train " + kScene + " --algorithm ddpg --task reach-any --samples 40 "
+                                            "--set learning.ddpg.gamma=2",
+                   {"learning.ddpg.gamma"});
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_is_refused) {
   Sandbox box;
   expect_bad_input(box, "train " + kScene + " --algorithm ddpg --task reach-one --out p.json",

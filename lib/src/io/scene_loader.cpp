@@ -58,7 +58,7 @@ scene::Scene read_scene(detail::Checker& c, const detail::Field& root,
   scene::Scene s;
   c.keys(root,
          {"schema", "name", "rod", "base", "tip", "loads", "actuators", "dynamics", "solver",
-          "control"});
+          "control", "learning"});
 
   const Field schema = c.require(root, "schema");
   if (auto text = c.text(schema); text && *text != scene::kSceneSchema)
@@ -88,6 +88,8 @@ scene::Scene read_scene(detail::Checker& c, const detail::Field& root,
   s.solver = detail::read_solver(c, Checker::child(root, "solver"));
   if (const Field control = Checker::child(root, "control"); control.present())
     s.control = detail::read_control(c, control, actuators, s.actuators);
+  if (const Field learning = Checker::child(root, "learning"); learning.present())
+    s.learning = detail::read_learning(c, learning);
 
   if (c.error_count() == 0) {
     // Safety net: the rod model checks its own arguments; nothing above should let it throw.

@@ -46,6 +46,10 @@ std::vector<scene::Actuator> read_actuators(Checker& c, const Field& f,
 scene::Dynamics read_dynamics(Checker& c, const Field& f);
 scene::Solver read_solver(Checker& c, const Field& f);
 
+// learning_reader.cpp
+/// The learning section (`rodlab train`'s settings).
+scene::Learning read_learning(Checker& c, const Field& f);
+
 // control_reader.cpp
 /// The control section; `actuators` is the scene's actuators field and `read` what was read of
 /// it: control needs every actuator to have limits (the controller's bounds and input scale).

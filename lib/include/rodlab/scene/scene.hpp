@@ -198,6 +198,29 @@ struct Control {
   int target_count = 10;                  ///< targets drawn when none are listed
 };
 
+/// learning.ddpg: DDPG's hyper-parameters (solvers/learning/ddpg.hpp holds the defaults, each
+/// written once there; empty: the default). docs/scene-reference.md "learning".
+struct LearningDdpg {
+  std::optional<std::vector<int>> actor_hidden, critic_hidden;  ///< hidden layer sizes
+  std::optional<std::string> activation;                        ///< tanh | relu (hidden layers)
+  std::optional<double> actor_learning_rate, critic_learning_rate, gamma, tau;
+  std::optional<int> batch_size, buffer_capacity, warmup, updates_per_step;
+  std::optional<double> noise_theta, noise_sigma, final_layer_scale;
+};
+
+/// learning: the settings of `rodlab train` (solvers/learning/rod_environment.hpp and
+/// goal_pool.hpp hold the defaults; empty: the default).
+struct Learning {
+  std::optional<double> beta;             ///< (4.40)
+  std::optional<int> max_steps;           ///< control steps of a reach episode
+  std::optional<int> state_nodes;         ///< the state of K nodes in the observation
+  std::optional<double> track_duration;   ///< [s] of a random path
+  std::optional<double> track_end_speed;  ///< [m/s] bound of its end velocities
+  std::optional<int> dynamic_holds;       ///< inputs of the dynamic-workspace run (reach goals)
+  std::optional<int> static_points;       ///< static-workspace samples (track goals)
+  LearningDdpg ddpg;
+};
+
 struct Scene {
   std::string schema = kSceneSchema;
   std::string name;
@@ -209,6 +232,7 @@ struct Scene {
   std::optional<Dynamics> dynamics;
   Solver solver;
   std::optional<Control> control;
+  std::optional<Learning> learning;
   std::string source_path;  ///< the file it was read from
 
   bool tip_clamped() const { return std::holds_alternative<ClampedTip>(tip); }
