@@ -5,6 +5,8 @@
 #include <deque>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <vector>
 
 #include "rodlab/check.hpp"
 #include "rodlab/io/atomic_file.hpp"
@@ -37,8 +39,8 @@ constexpr OptionSpec kSamplesOption{"--samples", "K",
 constexpr OptionSpec kSeedOption{"--seed", "S",
                                  "seed of every random draw, integer >= 0; default: 1"};
 constexpr OptionSpec kJobsOption{"--jobs", "J",
-                                 "environments in parallel, integer >= 1 (only 1 so far); "
-                                 "default: 1"};
+                                 "environments stepping in parallel (one thread each), integer "
+                                 ">= 1; default: 1"};
 constexpr OptionSpec kDtControlOption{"--dt-control", "X",
                                       "control step [s] > 0; default: control.dt_control, else "
                                       "0.05 (the thesis')"};
@@ -53,6 +55,7 @@ constexpr std::size_t kProgressWindow = 100;
 struct TrainSettings {
   std::string algorithm, task;
   long samples = 0;
+  int jobs = 1;
   std::uint64_t seed = 1;
   double dt_control = 0.05;
   std::filesystem::path out = "policy.json";
@@ -69,9 +72,7 @@ TrainSettings read_settings(OptionReader& reader, const SolveOptions& o) {
   if (!reader.text(kSamplesOption.name)) reader.problem("--samples: required (an integer >= 1)");
   if (algorithm == "gps")
     reader.problem("--algorithm: gps is not built yet (issue #15); use ddpg");
-  if (const auto jobs = reader.integer(kJobsOption.name, 1); jobs && *jobs > 1)
-    reader.problem("--jobs: parallel environments are not built yet (issue #15): 1 only (got " +
-                   std::to_string(*jobs) + ")");
+  if (const auto jobs = reader.integer(kJobsOption.name, 1)) t.jobs = *jobs;
   if (const auto seed = reader.integer(kSeedOption.name, 0)) t.seed = static_cast<std::uint64_t>(*seed);
   if (const auto dt = reader.positive(kDtControlOption.name)) t.dt_control = *dt;
   if (o.out) {
@@ -172,11 +173,17 @@ int run(const Invocation& inv) {
   d.seed = t.seed;
   if (scene.learning) apply_learning(*scene.learning, eo, gp, d);
   const l::GoalPool pool = l::make_goal_pool(scene, eo, gp);
-  l::RodEnvironment env(scene, eo, pool);
+  std::vector<std::unique_ptr<l::RodEnvironment>> envs;
+  std::vector<l::LearningEnvironment*> lanes;
+  for (int j = 0; j < t.jobs; ++j) {
+    envs.push_back(std::make_unique<l::RodEnvironment>(scene, eo, pool));
+    lanes.push_back(envs.back().get());
+  }
+  const l::RodEnvironment& env = *envs.front();
 
   l::Ddpg ddpg(env.observation_size(), env.action_size(), d);
   Progress progress(t.samples);
-  const l::DdpgLog log = ddpg.train(env, t.samples, std::ref(progress));
+  const l::DdpgLog log = ddpg.train(lanes, t.samples, std::ref(progress));
 
   l::Policy p;
   p.algorithm = t.algorithm;
@@ -203,7 +210,8 @@ int run(const Invocation& inv) {
   table.add_row({"trained", t.algorithm + " on " + t.task + ", " + p.scheme + " N = " +
                                 std::to_string(p.nodes) + ", dt_control " +
                                 io::format_number(p.dt_control) + " s, seed " +
-                                std::to_string(t.seed)});
+                                std::to_string(t.seed) + ", " + std::to_string(t.jobs) +
+                                " environment(s) in parallel"});
   if (eo.task == l::LearningTask::reach_one) {
     const auto& g = pool.points.front();
     table.add_row({"target", rodlab::format("[{:g}, {:g}, {:g}] m, {:g} mm from the closest "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <cmath>
 #include <limits>
 
@@ -103,49 +104,101 @@ void Ddpg::update(const ReplayBuffer& buffer) {
 
 DdpgLog Ddpg::train(LearningEnvironment& env, long samples,
                     const std::function<void(const DdpgEpisode&)>& progress) {
-  RODLAB_THROW_UNLESS(env.observation_size() == n_obs_ && env.action_size() == n_act_,
-                      "ddpg: the environment has {} observations and {} actions, the networks {} "
-                      "and {}",
-                      env.observation_size(), env.action_size(), n_obs_, n_act_);
+  LearningEnvironment* one[] = {&env};
+  return train(one, samples, progress);
+}
+
+namespace {
+
+/// One environment's episode in progress.
+struct Lane {
+  LearningEnvironment* env = nullptr;
+  std::vector<double> s, s2, a, noise;
+  DdpgEpisode episode;
+  Transition last;
+  bool fresh = true;  ///< reset before the next step
+};
+
+}  // namespace
+
+DdpgLog Ddpg::train(std::span<LearningEnvironment* const> envs, long samples,
+                    const std::function<void(const DdpgEpisode&)>& progress) {
+  RODLAB_THROW_UNLESS(!envs.empty(), "ddpg: no environment to train on");
+  for (const auto* env : envs)
+    RODLAB_THROW_UNLESS(env->observation_size() == n_obs_ && env->action_size() == n_act_,
+                        "ddpg: an environment has {} observations and {} actions, the networks "
+                        "{} and {}",
+                        env->observation_size(), env->action_size(), n_obs_, n_act_);
   const auto t0 = std::chrono::steady_clock::now();
   ReplayBuffer buffer(n_obs_, n_act_, std::max(1L, std::min(options_.buffer_capacity, samples)));
-  std::vector<double> s(static_cast<std::size_t>(n_obs_)), s2(s.size()),
-      a(static_cast<std::size_t>(n_act_));
-  std::vector<double> noise(a.size(), 0.0);
+  std::vector<Lane> lanes;
+  for (auto* env : envs) {
+    Lane lane;
+    lane.env = env;
+    lane.s.resize(static_cast<std::size_t>(n_obs_));
+    lane.s2.resize(lane.s.size());
+    lane.a.resize(static_cast<std::size_t>(n_act_));
+    lane.noise.resize(lane.a.size());
+    lanes.push_back(std::move(lane));
+  }
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::vector<std::future<void>> running;
   DdpgLog log;
   while (log.samples < samples) {
-    env.reset(rng_(), s);
-    std::fill(noise.begin(), noise.end(), 0.0);
-    DdpgEpisode e;
-    e.min_error = std::numeric_limits<double>::infinity();
-    for (Transition tr; !tr.done && log.samples < samples;) {
-      if (log.samples < options_.warmup) {
-        for (double& v : a) v = uniform(rng_);
+    // every lane's action, in lane order (the draws and the network are not shared across
+    // threads: the same seed gives the same run whatever the timing)
+    const long round = std::min<long>(static_cast<long>(lanes.size()), samples - log.samples);
+    for (long k = 0; k < round; ++k) {
+      Lane& lane = lanes[static_cast<std::size_t>(k)];
+      if (lane.fresh) {
+        lane.env->reset(rng_(), lane.s);
+        std::fill(lane.noise.begin(), lane.noise.end(), 0.0);
+        lane.episode = {};
+        lane.episode.min_error = std::numeric_limits<double>::infinity();
+        lane.fresh = false;
+      }
+      if (log.samples + k < options_.warmup) {
+        for (double& v : lane.a) v = uniform(rng_);
       } else {
-        act(s, a);
-        for (std::size_t k = 0; k < a.size(); ++k) {  // Ornstein-Uhlenbeck, dt = 1 step
-          noise[k] += -options_.noise_theta * noise[k] + options_.noise_sigma * normal(rng_);
-          a[k] = std::clamp(a[k] + noise[k], -1.0, 1.0);
+        act(lane.s, lane.a);
+        for (std::size_t i = 0; i < lane.a.size(); ++i) {  // Ornstein-Uhlenbeck, dt = 1 step
+          lane.noise[i] += -options_.noise_theta * lane.noise[i] + options_.noise_sigma * normal(rng_);
+          lane.a[i] = std::clamp(lane.a[i] + lane.noise[i], -1.0, 1.0);
         }
       }
-      tr = env.step(a, s2);
+    }
+    // the steps, in parallel: one thread per lane but the first, which steps here
+    running.clear();
+    for (long k = 1; k < round; ++k)
+      running.push_back(std::async(std::launch::async, [&lane = lanes[static_cast<std::size_t>(k)]] {
+        lane.last = lane.env->step(lane.a, lane.s2);
+      }));
+    lanes[0].last = lanes[0].env->step(lanes[0].a, lanes[0].s2);
+    for (auto& f : running) f.get();  // rethrows a lane's exception
+    // the transitions and updates, in lane order
+    for (long k = 0; k < round; ++k) {
+      Lane& lane = lanes[static_cast<std::size_t>(k)];
+      const Transition& tr = lane.last;
       ++log.samples;
+      DdpgEpisode& e = lane.episode;
       ++e.steps;
       e.return_sum += tr.reward;
       e.final_error = tr.error;
       e.min_error = std::min(e.min_error, tr.error);
       e.success = e.success || tr.success;
       if (tr.failed) e.failed = true, e.reason = tr.reason;
-      buffer.add(s, a, tr.reward, s2, tr.terminal);
-      std::swap(s, s2);
+      buffer.add(lane.s, lane.a, tr.reward, lane.s2, tr.terminal);
+      std::swap(lane.s, lane.s2);
       if (log.samples >= options_.warmup && buffer.size() >= options_.batch_size)
         for (int u = 0; u < options_.updates_per_step; ++u, ++log.updates) update(buffer);
+      if (tr.done || log.samples >= samples) {
+        e.samples = log.samples;
+        log.episodes.push_back(e);
+        if (progress) progress(e);
+        lane.fresh = true;
+      }
     }
-    e.samples = log.samples;
-    log.episodes.push_back(e);
-    if (progress) progress(e);
   }
   log.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return log;

@@ -75,7 +75,7 @@ BOOST_AUTO_TEST_CASE(bad_input_is_refused) {
   expect_bad_input(box, "train " + kScene + " --algorithm ddpg --task reach-all --samples 10",
                    {"--task"});
   expect_bad_input(box, "train " + kScene + " --algorithm ddpg --task reach-one --samples 10 "
-                                            "--jobs 2",
+                                            "--jobs 0",
                    {"--jobs"});
   expect_bad_input(box, "train " + kScene + " --algorithm ddpg --task reach-one --samples 10 "
                                             "--out p.csv",

@@ -130,6 +130,23 @@ BOOST_AUTO_TEST_CASE(same_seed_same_training) {
   BOOST_TEST((one.actor().parameters() - other.actor().parameters()).norm() > 0.0);
 }
 
+// Parallel environments (two LinearPlants stepping on two threads): the same seed gives the same
+// networks bit for bit whatever the threads' timing, and the budget counts both lanes' samples.
+BOOST_AUTO_TEST_CASE(parallel_environments_repeat_with_their_seed) {
+  LinearPlant a1, a2, b1, b2;
+  l::LearningEnvironment* first[] = {&a1, &a2};
+  l::LearningEnvironment* second[] = {&b1, &b2};
+  l::Ddpg one(1, 1, linear_options(3)), two(1, 1, linear_options(3));
+  const l::DdpgLog log = one.train(first, 3001);
+  two.train(second, 3001);
+  BOOST_TEST(log.samples == 3001);
+  BOOST_TEST((one.actor().parameters() - two.actor().parameters()).norm() == 0.0);
+  BOOST_TEST((one.critic().parameters() - two.critic().parameters()).norm() == 0.0);
+  long counted = 0;  // every sample in exactly one episode
+  for (const auto& e : log.episodes) counted += e.steps;
+  BOOST_TEST(counted == 3001);
+}
+
 // The replay buffer keeps the last `capacity` transitions in a ring and samples only stored ones.
 BOOST_AUTO_TEST_CASE(replay_buffer_is_a_ring) {
   l::ReplayBuffer buffer(1, 1, 3);

@@ -79,6 +79,13 @@ class Ddpg {
   /// `progress` (if set) is called after every episode.
   DdpgLog train(LearningEnvironment& env, long samples,
                 const std::function<void(const DdpgEpisode&)>& progress = {});
+  /// The same on several environments that step in parallel (one thread each): per round
+  /// every environment's action is chosen (in order), all step at once, then their transitions
+  /// enter the buffer and the updates follow, in order, `updates_per_step` per transition. The
+  /// same seed and number of environments give the same run bit for bit, whatever the timing;
+  /// a different number of environments gives a different (equally valid) run.
+  DdpgLog train(std::span<LearningEnvironment* const> envs, long samples,
+                const std::function<void(const DdpgEpisode&)>& progress = {});
 
   /// One update of critic, actor and targets from a minibatch of `buffer`.
   void update(const ReplayBuffer& buffer);
