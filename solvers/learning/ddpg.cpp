@@ -79,7 +79,9 @@ void Ddpg::update(const ReplayBuffer& buffer) {
   SA_.topRows(n_obs_) = S2_;
   SA_.bottomRows(n_act_) = A2;
   const auto& Q2 = critic_target_.forward(SA_, ws_critic_target_);
-  Y_ = R_ + options_.gamma * (1.0 - T_.array()).matrix().cwiseProduct(Q2.row(0));
+  // (a terminal sample's Q' is not used at all: selected away, not multiplied by 0, so that a
+  // non-finite next observation cannot leak in)
+  Y_ = R_ + options_.gamma * (T_.array() > 0.5).select(0.0, Q2.row(0).array()).matrix();
   // the critic: L_Q = 1/B sum (Q(s, a) - y)^2
   SA_.topRows(n_obs_) = S_;
   SA_.bottomRows(n_act_) = A_;

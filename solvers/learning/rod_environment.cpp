@@ -106,6 +106,7 @@ void RodEnvironment::reset(const Goal& goal, std::span<double> observation) {
   tip_before_ = plant_.tip();
   steps_ = 0;
   error_sum_ = 0.0;
+  last_error_ = (plant_.tip() - goal.position(0.0)).norm();
   done_ = false;
   observe(observation);
 }
@@ -137,21 +138,25 @@ Transition RodEnvironment::step(std::span<const double> action, std::span<double
   Transition tr;
   const double L = length();
   tr.error = (plant_.tip() - goal_.position(time())).norm();
-  if (!status.ok) {
+  if (!status.ok) {  // the state where the scheme stopped is no observation: the last one stays
     tr.reward = -1.0;
     tr.done = tr.terminal = tr.failed = true;
     tr.reason = "the plant's step failed: " + status.reason;
-  } else {
-    tr.reward = reward(tr.error, options_.beta, L);  // (4.40)
-    error_sum_ += tr.error;
-    const bool track = options_.task == LearningTask::track;
-    const bool last = steps_ >= episode_steps();
-    tr.success = track ? last && error_sum_ / steps_ < options_.threshold * L
-                       : tr.error < options_.threshold * L;
-    tr.terminal = !track && tr.success;
-    tr.done = last || tr.terminal;
+    tr.error = last_error_;
+    done_ = true;
+    std::copy(last_observation_.begin(), last_observation_.end(), observation.begin());
+    return tr;
   }
+  tr.reward = reward(tr.error, options_.beta, L);  // (4.40)
+  error_sum_ += tr.error;
+  const bool track = options_.task == LearningTask::track;
+  const bool last = steps_ >= episode_steps();
+  tr.success = track ? last && error_sum_ / steps_ < options_.threshold * L
+                     : tr.error < options_.threshold * L;
+  tr.terminal = !track && tr.success;
+  tr.done = last || tr.terminal;
   done_ = tr.done;
+  last_error_ = tr.error;
   observe(observation);
   return tr;
 }
@@ -162,6 +167,7 @@ void RodEnvironment::observe(std::span<double> o) {
   std::optional<lie::Vector3> before;
   if (steps_ > 0) before = tip_before_;
   observer_.observe(plant_, before, goal_.position(t_next), goal_.velocity(t_next), o);
+  last_observation_.assign(o.begin(), o.end());  // no allocation after the first
 }
 
 }  // namespace rodlab::solvers::learning

@@ -201,3 +201,26 @@ BOOST_AUTO_TEST_CASE(reach_one_goal_cannot_be_held) {
   BOOST_TEST(r.error > 0.05 * L);
   BOOST_TEST((p.points.front() - Vector3(0, 0, L)).norm() > 0.05 * L);
 }
+
+// A failed plant step (single shooting allowed one Newton iteration: it cannot converge after a
+// 0.5 N jump) ends the episode as terminal and failed, with the reason, reward -1, and the
+// observation and error of before the step (finite: the state where the scheme stopped is not
+// observed, so nothing non-finite reaches a replay buffer).
+BOOST_AUTO_TEST_CASE(a_failed_step_is_reported_and_observes_nothing_new) {
+  auto o = options(l::LearningTask::reach_any);
+  o.plant.solver.max_iterations = 1;
+  l::RodEnvironment env(cable_robot(), o, pool());
+  std::vector<double> before(9), after(9);
+  env.reset(1, before);
+  const std::vector<double> a{1.0, -1.0, -1.0, -1.0};
+  const l::Transition tr = env.step(a, after);
+  BOOST_TEST_REQUIRE(tr.failed);
+  BOOST_TEST(tr.done);
+  BOOST_TEST(tr.terminal);
+  BOOST_TEST(!tr.success);
+  BOOST_TEST(tr.reward == -1.0);
+  BOOST_TEST(!tr.reason.empty());
+  BOOST_TEST(after == before, boost::test_tools::per_element());
+  BOOST_TEST(tr.error == (Vector3(0, 0, L) - env.goal().position(0.0)).norm(),
+             boost::test_tools::tolerance(1e-12));
+}

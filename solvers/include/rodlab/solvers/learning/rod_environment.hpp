@@ -11,7 +11,8 @@
 //
 // An episode ends with success (reach: the tip within threshold L of the target, thesis 4.4.2:
 // 5 %), at max_steps (reach) or at the path's end (track), or when the plant's step fails
-// (reported in the transition: failed and its reason; the reward is -1 there). Success and a
+// (reported in the transition: failed and its reason; the reward is -1 there, the observation
+// and error those before the step: the state where the scheme stopped is none). Success and a
 // failure are terminal; the end of a reach episode's steps or of a path is not.
 #include <cstdint>
 #include <memory>
@@ -114,6 +115,8 @@ class RodEnvironment final : public LearningEnvironment {
   lie::Vector3 tip_before_ = lie::Vector3::Zero();
   int steps_ = 0;
   double error_sum_ = 0.0;
+  double last_error_ = 0.0;               ///< the last step's error (a failed step repeats it)
+  std::vector<double> last_observation_;  ///< the last observation (a failed step repeats it)
   bool done_ = true;
 };
 
