@@ -493,6 +493,7 @@ result::ControlResult run_control(const scene::Scene& scene, const ControlRunOpt
     for (const auto& e : out.episodes)
       if (e.reason) out.reason = *e.reason;  // an unreachable target
   summarise(out, scene.rod.length, c.dt_control, out.summary);
+  if (options.policy) out.summary.samples = options.policy->training.samples;
   out.summary.wall_time_s = seconds_since(start);
   return out;
 }

@@ -39,6 +39,7 @@ BOOST_AUTO_TEST_CASE(ddpg_learns_to_reach_one_point) {
   BOOST_TEST_REQUIRE(c.status == 0, c.err);
   const auto r = nlohmann::json::parse(read(box.work / "r.json"));
   BOOST_TEST(r["targets"]["drawn_from"] == "policy");
+  BOOST_TEST(r["summary"]["samples"] == 1500);  // what the policy cost
   BOOST_TEST(r["targets"]["points"][0] == p["goal"]);
   BOOST_TEST(r["episodes"][0]["success"] == true);
   BOOST_TEST(double(r["episodes"][0]["min_error"]) < 0.005);
