@@ -99,12 +99,12 @@ class Progress {
     if (std::chrono::duration<double>(now - last_).count() < kProgressEvery && e.samples < samples_)
       return;
     last_ = now;
-    double returns = 0.0, successes = 0.0;
-    for (const auto& w : window_) returns += w.return_sum, successes += w.success ? 1.0 : 0.0;
+    double returns = 0.0;
+    for (const auto& w : window_) returns += w.return_sum;
     const double seconds = std::chrono::duration<double>(now - start_).count();
     std::cerr << "samples " << e.samples << "/" << samples_ << ", episodes " << episodes_
               << ", mean return " << io::format_number(returns / window_.size())
-              << ", success " << io::format_number(100.0 * successes / window_.size())
+              << ", success " << io::format_number(100.0 * success_rate())
               << " % (last " << window_.size() << "), "
               << io::format_number(e.samples / std::max(seconds, 1e-9)) << " samples/s\n";
   }

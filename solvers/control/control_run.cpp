@@ -20,6 +20,7 @@
 #include "rodlab/solvers/control/plant.hpp"
 #include "rodlab/solvers/control/plant_ilqr.hpp"
 #include "rodlab/solvers/control/static_targets.hpp"
+#include "rodlab/solvers/learning/action_map.hpp"
 #include "rodlab/solvers/learning/observer.hpp"
 
 namespace rodlab::solvers::control {
@@ -288,10 +289,10 @@ class PolicyController final : public DynamicController {
     observer_.observe(plant, tip_before_, horizon.front(), velocity,
                       std::span<double>(o_.data(), o_.size()));
     network_.infer(o_, a_);
-    Eigen::VectorXd u = lower_ + 0.5 * (a_.array().min(1.0).max(-1.0) + 1.0).matrix()
-                                           .cwiseProduct(upper_ - lower_);
+    Decision d{{}, {}, 1};
+    learning::input_of_action(std::span<const double>(a_.data(), a_.size()), lower_, upper_, d.u);
     tip_before_ = plant.tip();
-    return {{}, u.cwiseMax(lower_).cwiseMin(upper_), 1};
+    return d;
   }
 
  private:

@@ -13,10 +13,12 @@ namespace rodlab::solvers::learning {
 GoalPool make_goal_pool(const scene::Scene& scene, const EnvironmentOptions& e,
                         const GoalPoolOptions& o) {
   const double threshold = e.threshold * scene.rod.length;
+  // the statics of the static workspace and of reach-one's check, on the plant's nodes
+  control::InverseStaticsOptions is;
+  is.statics.nodes = e.plant.solver.nodes;
+  is.tolerance = threshold;
   GoalPool pool;
   if (e.task == LearningTask::track) {
-    control::InverseStaticsOptions is;
-    is.statics.nodes = e.plant.solver.nodes;
     pool.points = control::sample_static_targets(scene, is.statics, o.static_points,
                                                  static_cast<unsigned>(o.seed))
                       .tips;
@@ -39,9 +41,6 @@ GoalPool make_goal_pool(const scene::Scene& scene, const EnvironmentOptions& e,
   // reach-one: the first candidate in a seeded order that the rod cannot hold
   std::mt19937_64 rng(o.seed);
   std::shuffle(tips.begin(), tips.end(), rng);
-  control::InverseStaticsOptions is;
-  is.statics.nodes = e.plant.solver.nodes;
-  is.tolerance = threshold;
   control::InverseStatics statics(scene, is);
   for (const auto& tip : tips) {
     const auto r = statics.solve(tip);

@@ -7,6 +7,7 @@
 
 #include "rodlab/check.hpp"
 #include "rodlab/scene/trajectory.hpp"
+#include "rodlab/solvers/learning/action_map.hpp"
 #include "rodlab/solvers/learning/reward.hpp"
 
 namespace rodlab::solvers::learning {
@@ -114,13 +115,7 @@ void RodEnvironment::reset(const Goal& goal, std::span<double> observation) {
 void RodEnvironment::action_to_input(std::span<const double> action, Eigen::VectorXd& u) const {
   RODLAB_THROW_UNLESS(static_cast<int>(action.size()) == action_size(),
                       "learning: expected {} actions, got {}", action_size(), action.size());
-  u.resize(action_size());
-  const auto& lo = plant_.lower();
-  const auto& hi = plant_.upper();
-  for (int k = 0; k < action_size(); ++k) {
-    const double a = std::clamp(action[static_cast<std::size_t>(k)], -1.0, 1.0);
-    u[k] = std::clamp(lo[k] + 0.5 * (a + 1.0) * (hi[k] - lo[k]), lo[k], hi[k]);
-  }
+  input_of_action(action, plant_.lower(), plant_.upper(), u);
 }
 
 int RodEnvironment::episode_steps() const {

@@ -91,7 +91,7 @@ class RodEnvironment final : public LearningEnvironment {
   /// One control step under `action` (size action_size(), each clipped to [-1, 1]).
   Transition step(std::span<const double> action, std::span<double> observation) override;
 
-  /// The inputs an action holds (u = lower + (a + 1) / 2 (upper - lower), a clipped).
+  /// The inputs an action holds (action_map.hpp; throws for a wrong number of actions).
   void action_to_input(std::span<const double> action, Eigen::VectorXd& u) const;
 
   const Goal& goal() const { return goal_; }
