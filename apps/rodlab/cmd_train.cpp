@@ -14,6 +14,7 @@
 #include "rodlab/io/text_table.hpp"
 #include "rodlab/solvers/learning/ddpg.hpp"
 #include "rodlab/solvers/learning/goal_pool.hpp"
+#include "rodlab/solvers/learning/gps.hpp"
 #include "rodlab/solvers/learning/policy.hpp"
 #include "rodlab/solvers/learning/rod_environment.hpp"
 
@@ -32,7 +33,7 @@ constexpr std::array<std::string_view, 2> kAlgorithms{"ddpg", "gps"};
 constexpr std::array<std::string_view, 3> kTasks{"reach-one", "reach-any", "track"};
 
 constexpr OptionSpec kAlgorithmOption{"--algorithm", "ddpg|gps",
-                                      "the learning algorithm (gps: not yet built); required"};
+                                      "the learning algorithm; required"};
 constexpr OptionSpec kTaskOption{"--task", "reach-one|reach-any|track", "the task; required"};
 constexpr OptionSpec kSamplesOption{"--samples", "K",
                                     "environment steps to train on, integer >= 1; required"};
@@ -70,8 +71,6 @@ TrainSettings read_settings(OptionReader& reader, const SolveOptions& o) {
   if (!reader.text(kTaskOption.name))
     reader.problem("--task: required (reach-one, reach-any or track)");
   if (!reader.text(kSamplesOption.name)) reader.problem("--samples: required (an integer >= 1)");
-  if (algorithm == "gps")
-    reader.problem("--algorithm: gps is not built yet (issue #15); use ddpg");
   if (const auto jobs = reader.integer(kJobsOption.name, 1)) t.jobs = *jobs;
   if (const auto seed = reader.integer(kSeedOption.name, 0)) t.seed = static_cast<std::uint64_t>(*seed);
   if (const auto dt = reader.positive(kDtControlOption.name)) t.dt_control = *dt;
@@ -124,7 +123,7 @@ class Progress {
 
 /// The scene's learning section over the solvers' defaults (each absent field keeps it).
 void apply_learning(const scene::Learning& s, l::EnvironmentOptions& e, l::GoalPoolOptions& g,
-                    l::DdpgOptions& d) {
+                    l::DdpgOptions& d, l::GpsOptions& p) {
   const auto set = [](auto& to, const auto& from) {
     if (from) to = *from;
   };
@@ -150,6 +149,98 @@ void apply_learning(const scene::Learning& s, l::EnvironmentOptions& e, l::GoalP
   set(d.noise_theta, q.noise_theta);
   set(d.noise_sigma, q.noise_sigma);
   set(d.final_layer_scale, q.final_layer_scale);
+  const scene::LearningGps& r = s.gps;
+  set(p.conditions, r.conditions);
+  set(p.samples_per_condition, r.samples_per_condition);
+  set(p.steps, r.steps);
+  set(p.policy_hidden, r.policy_hidden);
+  if (r.activation) p.hidden = l::parse_activation(*r.activation);
+  set(p.policy_learning_rate, r.policy_learning_rate);
+  set(p.policy_epochs, r.policy_epochs);
+  set(p.batch_size, r.batch_size);
+  set(p.kl_step, r.kl_step);
+  set(p.min_step_mult, r.min_step_mult);
+  set(p.max_step_mult, r.max_step_mult);
+  set(p.kl.entropy, r.entropy);
+  set(p.initial_action, r.initial_action);
+  set(p.initial_variance, r.initial_variance);
+  set(p.noise_smoothing, r.noise_smoothing);
+  set(p.dynamics.prior.max_clusters, r.prior_clusters);
+  set(p.dynamics.prior_trajectories, r.prior_trajectories);
+  set(e.cost.alpha, r.cost_alpha);
+  set(e.cost.quadratic, r.cost_quadratic);
+  set(e.cost.velocity, r.cost_velocity);
+  set(e.cost.action, r.cost_action);
+  set(e.cost.bound, r.cost_bound);
+}
+
+/// What a training run gives the policy file and the summary, whichever the algorithm.
+struct Trained {
+  l::Mlp<double> network{l::MlpConfig{{1, 1}}};
+  long samples = 0, episodes = 0;
+  double wall_time_s = 0.0, success_rate = 0.0;
+  int failed = 0;
+  std::string first_failure;
+  std::string detail;  ///< an algorithm's own line (GPS: iterations, conditions)
+};
+
+Trained train_ddpg(std::span<l::LearningEnvironment* const> lanes, const l::DdpgOptions& d,
+                   const TrainSettings& t) {
+  const l::LearningEnvironment& env = *lanes.front();
+  l::Ddpg ddpg(env.observation_size(), env.action_size(), d);
+  Progress progress(t.samples);
+  const l::DdpgLog log = ddpg.train(lanes, t.samples, std::ref(progress));
+  Trained r;
+  r.network = ddpg.actor();
+  r.samples = log.samples;
+  r.episodes = static_cast<long>(log.episodes.size());
+  r.wall_time_s = log.wall_time_s;
+  r.success_rate = progress.success_rate();
+  for (const auto& e : log.episodes)
+    if (e.failed && r.failed++ == 0) r.first_failure = e.reason;
+  r.detail = "success over the last " + std::to_string(std::min(kProgressWindow, log.episodes.size())) +
+             " episodes";
+  return r;
+}
+
+/// The GPS progress line, after every iteration.
+void print_gps_progress(const l::GpsIteration& it, long samples, double length) {
+  std::cerr << "samples " << it.samples << "/" << samples << ", trajectories "
+            << it.trajectories << " (" << it.failed << " failed), mean cost "
+            << io::format_number(it.mean_cost) << ", success "
+            << io::format_number(100.0 * it.success_rate) << " %, best error "
+            << io::format_number(100.0 * it.mean_min_error / length) << " % L, KL/step "
+            << io::format_number(it.mean_kl) << ", "
+            << io::format_number(it.samples / std::max(it.wall_time_s, 1e-9)) << " samples/s\n";
+}
+
+Trained train_gps(std::span<l::RodEnvironment* const> envs, const l::GpsOptions& o,
+                  const TrainSettings& t) {
+  std::vector<l::TrajectoryEnvironment*> lanes(envs.begin(), envs.end());
+  const l::RodEnvironment& env = *envs.front();
+  std::vector<std::uint64_t> seeds;
+  for (int c = 0; c < o.conditions; ++c) seeds.push_back(t.seed * 1000003ULL + c);
+  l::Gps gps(env.state_size(), env.observation_size(), env.action_size(), o);
+  const double L = env.length();
+  const l::GpsLog log = gps.train(lanes, seeds, t.samples, [&](const l::GpsIteration& it) {
+    print_gps_progress(it, t.samples, L);
+  });
+  Trained r;
+  r.network = gps.policy();
+  r.samples = log.samples;
+  r.wall_time_s = log.wall_time_s;
+  for (const auto& it : log.iterations) {
+    r.episodes += it.trajectories;
+    r.failed += it.failed;
+    if (r.first_failure.empty()) r.first_failure = it.first_failure;
+  }
+  if (!log.iterations.empty()) r.success_rate = log.iterations.back().success_rate;
+  r.detail = rodlab::format("success of the last iteration's {} trajectories ({} iterations of "
+                            "{} conditions x {} trajectories x {} steps)",
+                            log.iterations.empty() ? 0 : log.iterations.back().trajectories,
+                            log.iterations.size(), o.conditions, o.samples_per_condition,
+                            o.steps);
+  return r;
 }
 
 int run(const Invocation& inv) {
@@ -171,19 +262,35 @@ int run(const Invocation& inv) {
   gp.seed = t.seed;
   l::DdpgOptions d;
   d.seed = t.seed;
-  if (scene.learning) apply_learning(*scene.learning, eo, gp, d);
+  l::GpsOptions g;
+  g.seed = t.seed;
+  const bool gps = t.algorithm == "gps";
+  if (scene.learning) apply_learning(*scene.learning, eo, gp, d, g);
+  if (gps && eo.task == l::LearningTask::reach_one) g.conditions = 1;  // one target
+  if (gps && eo.task == l::LearningTask::track && !(scene.learning && scene.learning->gps.steps))
+    g.steps = static_cast<int>(std::ceil(eo.track_duration / eo.plant.dt_control - 1e-9));
+  if (gps && t.samples < static_cast<long>(g.conditions) * g.samples_per_condition * g.steps)
+    throw UsageError(rodlab::format(
+        "--samples: GPS needs at least one iteration, {} conditions x {} trajectories x {} steps "
+        "= {} samples (got {})",
+        g.conditions, g.samples_per_condition, g.steps,
+        static_cast<long>(g.conditions) * g.samples_per_condition * g.steps, t.samples));
+
   const l::GoalPool pool = l::make_goal_pool(scene, eo, gp);
   std::vector<std::unique_ptr<l::RodEnvironment>> envs;
-  std::vector<l::LearningEnvironment*> lanes;
-  for (int j = 0; j < t.jobs; ++j) {
-    envs.push_back(std::make_unique<l::RodEnvironment>(scene, eo, pool));
-    lanes.push_back(envs.back().get());
-  }
+  for (int j = 0; j < t.jobs; ++j) envs.push_back(std::make_unique<l::RodEnvironment>(scene, eo, pool));
   const l::RodEnvironment& env = *envs.front();
 
-  l::Ddpg ddpg(env.observation_size(), env.action_size(), d);
-  Progress progress(t.samples);
-  const l::DdpgLog log = ddpg.train(lanes, t.samples, std::ref(progress));
+  Trained trained;
+  if (gps) {
+    std::vector<l::RodEnvironment*> lanes;
+    for (auto& e : envs) lanes.push_back(e.get());
+    trained = train_gps(lanes, g, t);
+  } else {
+    std::vector<l::LearningEnvironment*> lanes;
+    for (auto& e : envs) lanes.push_back(e.get());
+    trained = train_ddpg(lanes, d, t);
+  }
 
   l::Policy p;
   p.algorithm = t.algorithm;
@@ -197,15 +304,11 @@ int run(const Invocation& inv) {
   p.period = env.period();
   p.lower = env.plant().lower();
   p.upper = env.plant().upper();
-  p.training = {log.samples, static_cast<long>(log.episodes.size()), t.seed, log.wall_time_s};
+  p.training = {trained.samples, trained.episodes, t.seed, trained.wall_time_s};
   if (eo.task == l::LearningTask::reach_one) p.goal = pool.points.front();
-  p.network = ddpg.actor();
+  p.network = trained.network;
   io::write_file_atomically(t.out, l::to_json(p));
 
-  int failed = 0;
-  std::string first_failure;
-  for (const auto& e : log.episodes)
-    if (e.failed && failed++ == 0) first_failure = e.reason;
   io::TextTable table;
   table.add_row({"trained", t.algorithm + " on " + t.task + ", " + p.scheme + " N = " +
                                 std::to_string(p.nodes) + ", dt_control " +
@@ -220,15 +323,16 @@ int run(const Invocation& inv) {
   } else {
     table.add_row({"goals", std::to_string(pool.points.size()) + " candidate points"});
   }
-  table.add_row({"samples", std::to_string(log.samples) + " in " +
-                                std::to_string(log.episodes.size()) + " episodes (" +
-                                std::to_string(failed) + " ended by a failed step)"});
-  if (failed > 0) table.add_row({"first failure", first_failure});
-  table.add_row({"success", io::format_number(100.0 * progress.success_rate()) +
-                                " % of the last episodes"});
-  table.add_row({"wall time", io::format_number(log.wall_time_s) + " s (" +
-                                  io::format_number(log.samples / std::max(log.wall_time_s, 1e-9)) +
-                                  " samples/s)"});
+  table.add_row({"samples", std::to_string(trained.samples) + " in " +
+                                std::to_string(trained.episodes) + " episodes (" +
+                                std::to_string(trained.failed) + " ended by a failed step)"});
+  if (trained.failed > 0) table.add_row({"first failure", trained.first_failure});
+  table.add_row({"success", io::format_number(100.0 * trained.success_rate) + " %, " +
+                                trained.detail});
+  table.add_row({"wall time",
+                 io::format_number(trained.wall_time_s) + " s (" +
+                     io::format_number(trained.samples / std::max(trained.wall_time_s, 1e-9)) +
+                     " samples/s)"});
   std::cout << table.render() << "policy written to " << t.out.string() << '\n';
   return kSolved;
 }
@@ -243,13 +347,16 @@ const Command& train_command() {
   static const Command command{
       "train",
       "SCENE --algorithm ddpg|gps --task reach-one|reach-any|track --samples K [options]",
-      "train a control policy by reinforcement learning (DDPG) on the scene's rod",
+      "train a control policy by reinforcement learning (DDPG or GPS) on the scene's rod",
       "Trains a policy (docs/learning.md) on the scene's rod: the plant of `rodlab control`\n"
       "(--scheme, else dynamics.scheme, else implicit-midpoint; --nodes; --dt-control), the\n"
       "task's goals drawn with --seed (reach-one: one point of the dynamic workspace outside\n"
       "the static one; reach-any: any point of the dynamic workspace; track: random paths\n"
-      "through the static workspace), the reward (4.40) with beta = 0.3. Prints a progress\n"
-      "line every 10 s on long runs and writes the policy (rodlab.policy/1, JSON) atomically;\n"
+      "through the static workspace), the reward (4.40) with beta = 0.3. DDPG: deep\n"
+      "deterministic policy gradient; GPS: mirror-descent guided policy search (local\n"
+      "linear-Gaussian controllers, fitted dynamics, a supervised policy). Prints a progress\n"
+      "line (every 10 s for DDPG, every iteration for GPS) and writes the policy\n"
+      "(rodlab.policy/1, JSON) atomically;\n"
       "`rodlab control SCENE --controller policy --policy POLICY` runs it.\n"
       "\n"
       "Exit status: 0 trained (the policy is written); 2 bad input or usage (nothing is\n"

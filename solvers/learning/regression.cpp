@@ -30,7 +30,8 @@ template <class Scalar>
 RegressionResult fit_regression(Mlp<Scalar>& net, Adam<Scalar>& adam,
                                 const Eigen::Ref<const typename Mlp<Scalar>::Matrix>& X,
                                 const Eigen::Ref<const typename Mlp<Scalar>::Matrix>& Y,
-                                const RegressionOptions& options) {
+                                const RegressionOptions& options,
+                                const RegressionWeights* weights) {
   const Eigen::Index n = X.cols();
   RODLAB_THROW_UNLESS(X.rows() == net.input_size() && Y.rows() == net.output_size() &&
                           Y.cols() == n && n >= 1,
@@ -40,6 +41,16 @@ RegressionResult fit_regression(Mlp<Scalar>& net, Adam<Scalar>& adam,
   RODLAB_THROW_UNLESS(options.epochs >= 0 && options.batch_size >= 1,
                       "fit_regression: expected epochs >= 0 and batch_size >= 1 (got {} and {})",
                       options.epochs, options.batch_size);
+  RODLAB_THROW_UNLESS(
+      !weights || (static_cast<Eigen::Index>(weights->index.size()) == n &&
+                   std::all_of(weights->index.begin(), weights->index.end(),
+                               [&](int i) {
+                                 return i >= 0 &&
+                                        static_cast<std::size_t>(i) < weights->precision.size() &&
+                                        weights->precision[i].rows() == Y.rows() &&
+                                        weights->precision[i].cols() == Y.rows();
+                               })),
+      "fit_regression: expected {} weight indices into {}x{} matrices", n, Y.rows(), Y.rows());
   std::mt19937_64 rng(options.seed);
   std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), Eigen::Index{0});
@@ -60,7 +71,18 @@ RegressionResult fit_regression(Mlp<Scalar>& net, Adam<Scalar>& adam,
         b.y.col(j) = Y.col(order[start + j]);
       }
       const auto& prediction = net.forward(b.x, b.ws);
-      loss_sum += static_cast<double>(mse_loss(prediction, b.y, &b.dloss_dy)) * size;
+      if (weights) {  // (y - t)^T P (y - t) / (m N) per sample, its gradient 2 P (y - t) / (m N)
+        b.dloss_dy = prediction - b.y;
+        const double scale = 1.0 / static_cast<double>(Y.rows() * size);
+        for (Eigen::Index j = 0; j < size; ++j) {
+          const auto P = weights->precision[weights->index[order[start + j]]].cast<Scalar>();
+          const typename Mlp<Scalar>::Vector e = b.dloss_dy.col(j);
+          loss_sum += static_cast<double>(e.dot(P * e)) * scale * size;
+          b.dloss_dy.col(j) = static_cast<Scalar>(2.0 * scale) * (P * e);
+        }
+      } else {
+        loss_sum += static_cast<double>(mse_loss(prediction, b.y, &b.dloss_dy)) * size;
+      }
       gradient.setZero();
       net.backward(b.ws, b.dloss_dy, &gradient);
       adam.step(net.parameters(), gradient);
@@ -73,10 +95,12 @@ RegressionResult fit_regression(Mlp<Scalar>& net, Adam<Scalar>& adam,
 template RegressionResult fit_regression<double>(Mlp<double>&, Adam<double>&,
                                                  const Eigen::Ref<const Mlp<double>::Matrix>&,
                                                  const Eigen::Ref<const Mlp<double>::Matrix>&,
-                                                 const RegressionOptions&);
+                                                 const RegressionOptions&,
+                                                 const RegressionWeights*);
 template RegressionResult fit_regression<float>(Mlp<float>&, Adam<float>&,
                                                 const Eigen::Ref<const Mlp<float>::Matrix>&,
                                                 const Eigen::Ref<const Mlp<float>::Matrix>&,
-                                                const RegressionOptions&);
+                                                const RegressionOptions&,
+                                                const RegressionWeights*);
 
 }  // namespace rodlab::solvers::learning

@@ -73,6 +73,37 @@ RodEnvironment::RodEnvironment(const scene::Scene& scene, const EnvironmentOptio
                       "learning: track needs at least two points in the pool (got {})",
                       pool_.points.size());
   u_.resize(plant_.input_count());
+  options_.cost.beta = options.beta;
+  // o = J x + goal: x's first 6 entries (tip, velocity) are o's first 6; the goal's entries
+  // follow in o; the node coordinates close both
+  const int n = state_size(), g = goal_entries();
+  observation_jacobian_ = Eigen::MatrixXd::Zero(observer_.size(), n);
+  for (int i = 0; i < n; ++i) observation_jacobian_(i < 6 ? i : i + g, i) = 1.0;
+}
+
+void RodEnvironment::state(std::span<double> x) const {
+  RODLAB_THROW_UNLESS(static_cast<int>(x.size()) == state_size() && !last_observation_.empty(),
+                      "learning: expected a state of {} values after a reset (got {})",
+                      state_size(), x.size());
+  const int g = goal_entries();
+  for (int i = 0; i < state_size(); ++i) x[i] = last_observation_[i < 6 ? i : i + g];
+}
+
+double RodEnvironment::cost(const Eigen::Ref<const Eigen::VectorXd>& x,
+                            const Eigen::Ref<const Eigen::VectorXd>& a, int t,
+                            CostExpansion* e) const {
+  RODLAB_THROW_UNLESS(x.size() == state_size() && a.size() == action_size(),
+                      "learning: the cost of {} states and {} actions (expected {} and {})",
+                      x.size(), a.size(), state_size(), action_size());
+  const double time = t * plant_.dt_control(), L = length();
+  const lie::Vector3 goal = goal_.position(time) / L;
+  const lie::Vector3 velocity = goal_.velocity(time) * period() / L;
+  return options_.cost(x, a, goal, velocity, e);
+}
+
+void RodEnvironment::set_fixed_length(int steps) {
+  RODLAB_THROW_UNLESS(steps >= 1, "learning: a fixed episode length must be >= 1 (got {})", steps);
+  fixed_length_ = steps;
 }
 
 void RodEnvironment::reset(std::uint64_t seed, std::span<double> observation) {
@@ -119,6 +150,7 @@ void RodEnvironment::action_to_input(std::span<const double> action, Eigen::Vect
 }
 
 int RodEnvironment::episode_steps() const {
+  if (fixed_length_ > 0) return fixed_length_;
   if (options_.task != LearningTask::track) return options_.max_steps;
   return std::max(1, static_cast<int>(std::ceil(goal_.duration() / plant_.dt_control() - 1e-9)));
 }
@@ -148,7 +180,7 @@ Transition RodEnvironment::step(std::span<const double> action, std::span<double
   const bool last = steps_ >= episode_steps();
   tr.success = track ? last && error_sum_ / steps_ < options_.threshold * L
                      : tr.error < options_.threshold * L;
-  tr.terminal = !track && tr.success;
+  tr.terminal = !track && tr.success && fixed_length_ == 0;
   tr.done = last || tr.terminal;
   done_ = tr.done;
   last_error_ = tr.error;

@@ -27,23 +27,64 @@ scene::LearningDdpg read_ddpg(Checker& c, const Field& f) {
                   "warmup", "updates_per_step", "noise_theta", "noise_sigma",
                   "final_layer_scale"}))
     return d;
-  d.actor_hidden = read_sizes(c, c.child(f, "actor_hidden"));
-  d.critic_hidden = read_sizes(c, c.child(f, "critic_hidden"));
+  d.actor_hidden = read_sizes(c, Checker::child(f, "actor_hidden"));
+  d.critic_hidden = read_sizes(c, Checker::child(f, "critic_hidden"));
   static constexpr std::string_view kActivations[] = {"tanh", "relu"};
-  if (auto k = c.choice(c.child(f, "activation"), kActivations))
+  if (auto k = c.choice(Checker::child(f, "activation"), kActivations))
     d.activation = std::string(kActivations[*k]);
-  d.actor_learning_rate = c.number(c.child(f, "actor_learning_rate"), Range::positive());
-  d.critic_learning_rate = c.number(c.child(f, "critic_learning_rate"), Range::positive());
-  d.gamma = c.number(c.child(f, "gamma"), Range{0.0, 1.0, false, false});
-  d.tau = c.number(c.child(f, "tau"), Range{0.0, 1.0, true, false});
-  d.batch_size = c.integer(c.child(f, "batch_size"), 1);
-  d.buffer_capacity = c.integer(c.child(f, "buffer_capacity"), 1);
-  d.warmup = c.integer(c.child(f, "warmup"), 0);
-  d.updates_per_step = c.integer(c.child(f, "updates_per_step"), 0);
-  d.noise_theta = c.number(c.child(f, "noise_theta"), Range::non_negative());
-  d.noise_sigma = c.number(c.child(f, "noise_sigma"), Range::non_negative());
-  d.final_layer_scale = c.number(c.child(f, "final_layer_scale"), Range::non_negative());
+  d.actor_learning_rate = c.number(Checker::child(f, "actor_learning_rate"), Range::positive());
+  d.critic_learning_rate = c.number(Checker::child(f, "critic_learning_rate"), Range::positive());
+  d.gamma = c.number(Checker::child(f, "gamma"), Range{0.0, 1.0, false, false});
+  d.tau = c.number(Checker::child(f, "tau"), Range{0.0, 1.0, true, false});
+  d.batch_size = c.integer(Checker::child(f, "batch_size"), 1);
+  d.buffer_capacity = c.integer(Checker::child(f, "buffer_capacity"), 1);
+  d.warmup = c.integer(Checker::child(f, "warmup"), 0);
+  d.updates_per_step = c.integer(Checker::child(f, "updates_per_step"), 0);
+  d.noise_theta = c.number(Checker::child(f, "noise_theta"), Range::non_negative());
+  d.noise_sigma = c.number(Checker::child(f, "noise_sigma"), Range::non_negative());
+  d.final_layer_scale = c.number(Checker::child(f, "final_layer_scale"), Range::non_negative());
   return d;
+}
+
+scene::LearningGps read_gps(Checker& c, const Field& f) {
+  scene::LearningGps g;
+  if (!c.keys(f, {"conditions", "samples_per_condition", "steps", "policy_hidden", "activation",
+                  "policy_learning_rate", "policy_epochs", "batch_size", "kl_step",
+                  "min_step_mult", "max_step_mult", "initial_action", "initial_variance",
+                  "noise_smoothing", "prior_clusters", "prior_trajectories", "entropy", "cost"}))
+    return g;
+  g.conditions = c.integer(Checker::child(f, "conditions"), 1);
+  g.samples_per_condition = c.integer(Checker::child(f, "samples_per_condition"), 2);
+  g.steps = c.integer(Checker::child(f, "steps"), 2);
+  g.policy_hidden = read_sizes(c, Checker::child(f, "policy_hidden"));
+  static constexpr std::string_view kActivations[] = {"tanh", "relu"};
+  if (auto k = c.choice(Checker::child(f, "activation"), kActivations))
+    g.activation = std::string(kActivations[*k]);
+  g.policy_learning_rate = c.number(Checker::child(f, "policy_learning_rate"), Range::positive());
+  g.policy_epochs = c.integer(Checker::child(f, "policy_epochs"), 0);
+  g.batch_size = c.integer(Checker::child(f, "batch_size"), 1);
+  g.kl_step = c.number(Checker::child(f, "kl_step"), Range::positive());
+  g.min_step_mult = c.number(Checker::child(f, "min_step_mult"), Range::positive());
+  g.max_step_mult = c.number(Checker::child(f, "max_step_mult"), Range::positive());
+  g.entropy = c.number(Checker::child(f, "entropy"), Range::non_negative());
+  g.initial_action = c.number(Checker::child(f, "initial_action"), Range{-1.0, 1.0, true, true});
+  g.initial_variance = c.number(Checker::child(f, "initial_variance"), Range::positive());
+  g.noise_smoothing = c.number(Checker::child(f, "noise_smoothing"), Range::non_negative());
+  g.prior_clusters = c.integer(Checker::child(f, "prior_clusters"), 1);
+  g.prior_trajectories = c.integer(Checker::child(f, "prior_trajectories"), 1);
+  const Field cost = Checker::child(f, "cost");
+  if (cost.present() &&
+      c.keys(cost, {"alpha", "quadratic", "velocity", "action", "bound"})) {
+    g.cost_alpha = c.number(Checker::child(cost, "alpha"), Range::positive());
+    g.cost_quadratic = c.number(Checker::child(cost, "quadratic"), Range::non_negative());
+    g.cost_velocity = c.number(Checker::child(cost, "velocity"), Range::non_negative());
+    g.cost_action = c.number(Checker::child(cost, "action"), Range::non_negative());
+    g.cost_bound = c.number(Checker::child(cost, "bound"), Range::non_negative());
+  }
+  if (g.min_step_mult && g.max_step_mult && *g.max_step_mult < *g.min_step_mult)
+    c.error(Checker::child(f, "max_step_mult"),
+            "must be >= min_step_mult (" + format_number(*g.min_step_mult) + ")");
+  return g;
 }
 
 }  // namespace
@@ -51,16 +92,17 @@ scene::LearningDdpg read_ddpg(Checker& c, const Field& f) {
 scene::Learning read_learning(Checker& c, const Field& f) {
   scene::Learning l;
   if (!c.keys(f, {"beta", "max_steps", "state_nodes", "track_duration", "track_end_speed",
-                  "dynamic_holds", "static_points", "ddpg"}))
+                  "dynamic_holds", "static_points", "ddpg", "gps"}))
     return l;
-  l.beta = c.number(c.child(f, "beta"), Range{0.0, 1.0, true, false});
-  l.max_steps = c.integer(c.child(f, "max_steps"), 1);
-  l.state_nodes = c.integer(c.child(f, "state_nodes"), 0);
-  l.track_duration = c.number(c.child(f, "track_duration"), Range::positive());
-  l.track_end_speed = c.number(c.child(f, "track_end_speed"), Range::non_negative());
-  l.dynamic_holds = c.integer(c.child(f, "dynamic_holds"), 1);
-  l.static_points = c.integer(c.child(f, "static_points"), 2);
+  l.beta = c.number(Checker::child(f, "beta"), Range{0.0, 1.0, true, false});
+  l.max_steps = c.integer(Checker::child(f, "max_steps"), 1);
+  l.state_nodes = c.integer(Checker::child(f, "state_nodes"), 0);
+  l.track_duration = c.number(Checker::child(f, "track_duration"), Range::positive());
+  l.track_end_speed = c.number(Checker::child(f, "track_end_speed"), Range::non_negative());
+  l.dynamic_holds = c.integer(Checker::child(f, "dynamic_holds"), 1);
+  l.static_points = c.integer(Checker::child(f, "static_points"), 2);
   l.ddpg = read_ddpg(c, Checker::child(f, "ddpg"));
+  l.gps = read_gps(c, Checker::child(f, "gps"));
   return l;
 }
 

@@ -208,6 +208,20 @@ struct LearningDdpg {
   std::optional<double> noise_theta, noise_sigma, final_layer_scale;
 };
 
+/// learning.gps: Guided Policy Search (solvers/learning/gps.hpp holds the defaults).
+struct LearningGps {
+  std::optional<int> conditions, samples_per_condition, steps;
+  std::optional<std::vector<int>> policy_hidden;
+  std::optional<std::string> activation;  ///< tanh | relu (hidden layers)
+  std::optional<double> policy_learning_rate;
+  std::optional<int> policy_epochs, batch_size;
+  std::optional<double> kl_step, min_step_mult, max_step_mult, entropy;
+  std::optional<double> initial_action, initial_variance, noise_smoothing;
+  std::optional<int> prior_clusters, prior_trajectories;
+  /// the cost (solvers/learning/tip_cost.hpp)
+  std::optional<double> cost_alpha, cost_quadratic, cost_velocity, cost_action, cost_bound;
+};
+
 /// learning: the settings of `rodlab train` (solvers/learning/rod_environment.hpp and
 /// goal_pool.hpp hold the defaults; empty: the default).
 struct Learning {
@@ -219,6 +233,7 @@ struct Learning {
   std::optional<int> dynamic_holds;       ///< inputs of the dynamic-workspace run (reach goals)
   std::optional<int> static_points;       ///< static-workspace samples (track goals)
   LearningDdpg ddpg;
+  LearningGps gps;
 };
 
 struct Scene {

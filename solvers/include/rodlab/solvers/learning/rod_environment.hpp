@@ -26,6 +26,8 @@
 #include "rodlab/scene/scene.hpp"
 #include "rodlab/solvers/control/plant.hpp"
 #include "rodlab/solvers/learning/learning_environment.hpp"
+#include "rodlab/solvers/learning/tip_cost.hpp"
+#include "rodlab/solvers/learning/trajectory_environment.hpp"
 #include "rodlab/solvers/learning/observer.hpp"
 #include "rodlab/solvers/learning/polynomial_path.hpp"
 
@@ -48,6 +50,8 @@ struct EnvironmentOptions {
   double track_duration = 4.0;  ///< [s] of a random path (the middle circle's period)
   /// [m/s] bound of each component of a random path's end velocities ("small", thesis 4.4.2).
   double track_end_speed = 0.01;
+  /// GPS's cost (tip_cost.hpp); its beta is set from `beta` above.
+  TipCost cost;
 };
 
 /// What an episode aims at: a fixed point, or a path with its velocity.
@@ -70,7 +74,7 @@ struct GoalPool {
   double beyond_static = 0.0;
 };
 
-class RodEnvironment final : public LearningEnvironment {
+class RodEnvironment final : public TrajectoryEnvironment {
  public:
   /// Throws std::invalid_argument for bad options, an empty pool, or what the plant refuses.
   RodEnvironment(const scene::Scene& scene, const EnvironmentOptions& options, GoalPool pool);
@@ -91,6 +95,15 @@ class RodEnvironment final : public LearningEnvironment {
   /// One control step under `action` (size action_size(), each clipped to [-1, 1]).
   Transition step(std::span<const double> action, std::span<double> observation) override;
 
+  /// GPS (trajectory_environment.hpp): the state x is the observation without the goal's
+  /// entries (the tip, its velocity, the K nodes' coordinates), so d o / d x is a selection.
+  int state_size() const override { return observer_.size() - goal_entries(); }
+  void state(std::span<double> x) const override;
+  double cost(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& a,
+              int t, CostExpansion* e) const override;
+  const Eigen::MatrixXd& observation_jacobian() const override { return observation_jacobian_; }
+  void set_fixed_length(int steps) override;
+
   /// The inputs an action holds (action_map.hpp; throws for a wrong number of actions).
   void action_to_input(std::span<const double> action, Eigen::VectorXd& u) const;
 
@@ -102,8 +115,10 @@ class RodEnvironment final : public LearningEnvironment {
 
  private:
   void observe(std::span<double> observation);
-  /// The episode's last step: its length (reach) or the path's end (track).
+  /// The episode's last step: its length (reach) or the path's end (track), or the fixed length.
   int episode_steps() const;
+  /// The goal's entries in the observation: 3, or 6 with its velocity (track).
+  int goal_entries() const { return observer_.layout().goal_velocity ? 6 : 3; }
 
   EnvironmentOptions options_;
   GoalPool pool_;
@@ -118,6 +133,8 @@ class RodEnvironment final : public LearningEnvironment {
   double last_error_ = 0.0;               ///< the last step's error (a failed step repeats it)
   std::vector<double> last_observation_;  ///< the last observation (a failed step repeats it)
   bool done_ = true;
+  int fixed_length_ = 0;  ///< > 0: episodes of exactly this many steps (GPS)
+  Eigen::MatrixXd observation_jacobian_;
 };
 
 }  // namespace rodlab::solvers::learning

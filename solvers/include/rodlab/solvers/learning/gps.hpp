@@ -1,0 +1,133 @@
+#pragma once
+// Guided Policy Search, the mirror-descent variant MDGPS (Montgomery & Levine 2016, "Guided
+// policy search via approximate mirror descent", Algorithm 2 with samples from the local
+// controllers; Levine & Abbeel 2014 for the local dynamics and the KL-bounded LQG; thesis 4.3.2,
+// Algorithm 6; docs/learning.md "GPS"). M conditions (an episode seed each: the same start and
+// goal every time), T steps per trajectory. Per iteration:
+//
+//   1. sample N trajectories per condition from its linear-Gaussian controller p_c (in
+//      parallel on the environments; noise smoothed in time, from the seed);
+//   2. fit linear-Gaussian dynamics per condition with a Gaussian-mixture prior fitted on the
+//      recent trajectories of all conditions (linear_gaussian_dynamics.hpp);
+//   3. expand the cost about every sample and average (a quadratic per condition and step);
+//   4. linearise the neural policy pi_theta(a | o) = N(mu_theta(o), S_pi) about the samples:
+//      K_pi,t = mean_i dmu/do (o_i,t) J, k_pi,t = mean_i mu - K_pi,t mean_i x (J = do/dx,
+//      trajectory_environment.hpp). The reference code regresses the policy's outputs on the
+//      states with a prior instead: our network's Jacobian is exact and cheap;
+//   5. adjust each condition's step (the reference's "classic" rule: the predicted against the
+//      actual improvement of the previous step, multiplier in [min, max]);
+//   6. C-step: p_c <- argmin E[l] s.t. KL(p_c || pi_lin,c) <= kl_step x step_mult x T
+//      (trajectory_optimizer.hpp);
+//   7. S-step: fit mu_theta to the new controllers' means K_t x + k_t at the samples'
+//      observations, each weighted by the controller's precision S_t^-1 (minibatch Adam), and
+//      set S_pi = diag(1 / mean diag S_t^-1).
+//
+// Before the first C-step the policy is fitted to the initial controllers (step 7 first). Every
+// random draw comes from the seed: the same seed and number of environments give the same
+// policy bit for bit (the trajectories are assigned to environments in a fixed order).
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rodlab/solvers/learning/activation.hpp"
+#include "rodlab/solvers/learning/adam.hpp"
+#include "rodlab/solvers/learning/linear_gaussian.hpp"
+#include "rodlab/solvers/learning/linear_gaussian_dynamics.hpp"
+#include "rodlab/solvers/learning/mlp.hpp"
+#include "rodlab/solvers/learning/trajectory_environment.hpp"
+#include "rodlab/solvers/learning/trajectory_optimizer.hpp"
+
+namespace rodlab::solvers::learning {
+
+struct GpsOptions {
+  int conditions = 4;             ///< M (the reference MDGPS example's 4)
+  int samples_per_condition = 5;  ///< N (the example's 5)
+  int steps = 40;                 ///< T control steps per trajectory
+  std::vector<int> policy_hidden{64, 64};
+  Activation hidden = Activation::relu;
+  double policy_learning_rate = 1e-3;
+  int policy_epochs = 50;  ///< S-step epochs over the iteration's samples
+  int batch_size = 64;
+  double kl_step = 0.2;        ///< epsilon per step (the bound is kl_step x step_mult x T)
+  double min_step_mult = 0.5;  ///< the reference example's
+  double max_step_mult = 3.0;
+  double initial_action = 0.0;    ///< the first controllers' mean action
+  double initial_variance = 0.1;  ///< their action variance
+  /// Variance [steps^2] of the Gaussian filter smoothing the exploration noise in time
+  /// (rescaled to unit variance); 0: white noise.
+  double noise_smoothing = 2.0;
+  DynamicsFitOptions dynamics;
+  KlStepOptions kl;
+  std::uint64_t seed = 1;
+};
+
+/// What one iteration measured on its samples (the local controllers').
+struct GpsIteration {
+  long samples = 0;  ///< environment steps so far, this iteration's included
+  int trajectories = 0, failed = 0;
+  double mean_cost = 0.0;          ///< per trajectory
+  double success_rate = 0.0;       ///< of the iteration's trajectories
+  double mean_min_error = 0.0;     ///< [the environment's error unit] best along a trajectory
+  double mean_final_error = 0.0;
+  double mean_kl = 0.0, mean_step_mult = 0.0;
+  double policy_loss = 0.0;  ///< the S-step's last epoch
+  double wall_time_s = 0.0;
+  std::string first_failure;
+};
+
+struct GpsLog {
+  std::vector<GpsIteration> iterations;
+  long samples = 0;
+  double wall_time_s = 0.0;
+};
+
+class Gps {
+ public:
+  /// Throws std::invalid_argument for bad sizes or options.
+  Gps(int state_size, int observation_size, int action_size, const GpsOptions& options);
+
+  /// Trains on `envs` (all alike; they step in parallel, one thread each) with the conditions
+  /// `condition_seeds` (episode seeds; at least one) until `samples` environment steps are
+  /// used (whole iterations: an iteration needs M N T). `progress` is called after each
+  /// iteration.
+  GpsLog train(std::span<TrajectoryEnvironment* const> envs,
+               std::span<const std::uint64_t> condition_seeds, long samples,
+               const std::function<void(const GpsIteration&)>& progress = {});
+
+  /// The policy's mean action for an observation (no clipping).
+  void act(std::span<const double> observation, std::span<double> action);
+  Mlp<double>& policy() { return policy_; }
+  const Eigen::VectorXd& policy_variance() const { return policy_variance_; }
+  /// The local controllers after training (one per condition).
+  const std::vector<LinearGaussianController>& controllers() const { return controllers_; }
+  const GpsOptions& options() const { return options_; }
+
+ private:
+  struct Sample;
+  struct Condition;
+
+  std::vector<Sample> collect(std::span<TrajectoryEnvironment* const> envs,
+                              std::span<const std::uint64_t> seeds, int iteration);
+  Sample rollout(TrajectoryEnvironment& env, std::uint64_t episode_seed,
+                 const LinearGaussianController& p, std::uint64_t noise_seed) const;
+  /// pi_theta linearised about a condition's samples (step 4).
+  LinearGaussianController linearise_policy(const std::vector<const Sample*>& samples,
+                                            const Eigen::MatrixXd& J);
+  /// The S-step (7) on every valid sample, towards `controllers`; returns the last epoch's loss.
+  double fit_policy(const std::vector<std::vector<const Sample*>>& by_condition,
+                    const std::vector<LinearGaussianController>& controllers);
+
+  GpsOptions options_;
+  int n_, n_obs_, m_;
+  Mlp<double> policy_;
+  Adam<double> adam_;
+  Eigen::VectorXd policy_variance_;
+  std::vector<LinearGaussianController> controllers_;
+  std::uint64_t fits_ = 0;  ///< S-steps so far (their shuffle seeds)
+};
+
+}  // namespace rodlab::solvers::learning
