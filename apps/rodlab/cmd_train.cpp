@@ -162,6 +162,8 @@ void apply_learning(const scene::Learning& s, l::EnvironmentOptions& e, l::GoalP
   set(p.min_step_mult, r.min_step_mult);
   set(p.max_step_mult, r.max_step_mult);
   set(p.kl.entropy, r.entropy);
+  set(p.sample_on_policy, r.sample_on_policy);
+  set(p.redraw_conditions, r.redraw_conditions);
   set(p.initial_action, r.initial_action);
   set(p.initial_variance, r.initial_variance);
   set(p.noise_smoothing, r.noise_smoothing);
@@ -172,6 +174,9 @@ void apply_learning(const scene::Learning& s, l::EnvironmentOptions& e, l::GoalP
   set(e.cost.velocity, r.cost_velocity);
   set(e.cost.action, r.cost_action);
   set(e.cost.bound, r.cost_bound);
+  set(e.cost.running, r.cost_running);
+  set(e.cost.final, r.cost_final);
+  set(e.cost.log, r.cost_log);
 }
 
 /// What a training run gives the policy file and the summary, whichever the algorithm.

@@ -91,10 +91,11 @@ Gps::Gps(int state_size, int observation_size, int action_size, const GpsOptions
                           o.policy_epochs >= 0 && o.batch_size >= 1 && o.kl_step > 0.0 &&
                           o.min_step_mult > 0.0 && o.max_step_mult >= o.min_step_mult &&
                           o.initial_variance > 0.0 && o.noise_smoothing >= 0.0 &&
-                          o.policy_learning_rate > 0.0,
+                          o.policy_learning_rate > 0.0 &&
+                          (o.sample_on_policy || !o.redraw_conditions),
                       "GPS: bad options (conditions >= 1, samples_per_condition >= 2, steps >= 2, "
                       "positive kl_step, variance and learning rate, 0 < min_step_mult <= "
-                      "max_step_mult)");
+                      "max_step_mult, redraw_conditions only with sample_on_policy)");
 }
 
 void Gps::act(std::span<const double> observation, std::span<double> action) {
@@ -106,7 +107,7 @@ void Gps::act(std::span<const double> observation, std::span<double> action) {
 }
 
 Gps::Sample Gps::rollout(TrajectoryEnvironment& env, std::uint64_t episode_seed,
-                         const LinearGaussianController& p, std::uint64_t noise_seed) const {
+                         const LinearGaussianController* p, std::uint64_t noise_seed) const {
   const int T = options_.steps;
   std::mt19937_64 rng(noise_seed);
   const Eigen::MatrixXd noise = smooth_noise(m_, T, options_.noise_smoothing, rng);
@@ -121,9 +122,14 @@ Gps::Sample Gps::rollout(TrajectoryEnvironment& env, std::uint64_t episode_seed,
   env.reset(episode_seed, {o.data(), static_cast<std::size_t>(n_obs_)});
   env.state({x.data(), static_cast<std::size_t>(n_)});
   CostExpansion e;
+  MlpWorkspace<double> ws;  // the policy's, per trajectory: rollouts run on several threads
+  const Eigen::VectorXd policy_std = policy_variance_.cwiseSqrt();
   s.min_error = std::numeric_limits<double>::infinity();
   for (int t = 0; t < T; ++t) {
-    a = p.K[t] * x + p.k[t] + p.cholesky[t] * noise.col(t);
+    if (p)
+      a = p->K[t] * x + p->k[t] + p->cholesky[t] * noise.col(t);
+    else
+      a = policy_.forward(o, ws).col(0) + policy_std.cwiseProduct(noise.col(t));
     s.X.col(t) = x;
     s.U.col(t) = a;
     s.O.col(t) = o;
@@ -166,7 +172,8 @@ std::vector<Gps::Sample> Gps::collect(std::span<TrajectoryEnvironment* const> en
       const int c = q / N;
       const std::uint64_t noise_seed =
           mix(options_.seed ^ mix(static_cast<std::uint64_t>(iteration) * 1000003ULL + q));
-      samples[q] = rollout(*envs[j], seeds[c], controllers_[c], noise_seed);
+      samples[q] = rollout(*envs[j], seeds[c],
+                           options_.sample_on_policy ? nullptr : &controllers_[c], noise_seed);
       samples[q].condition = c;
     }
   };
@@ -289,8 +296,11 @@ GpsLog Gps::train(std::span<TrajectoryEnvironment* const> envs,
 
   GpsLog log;
   const auto start = std::chrono::steady_clock::now();
+  std::vector<std::uint64_t> conditions(seeds.begin(), seeds.end());
   for (int itr = 0; log.samples + per_iteration <= samples; ++itr) {
-    std::vector<Sample> all = collect(envs, seeds, itr);
+    if (options_.redraw_conditions && itr > 0)
+      for (int c = 0; c < M; ++c) conditions[c] = mix(seeds[c] ^ mix(0xC0DEULL + itr));
+    std::vector<Sample> all = collect(envs, conditions, itr);
     log.samples += per_iteration;
     GpsIteration it;
     it.samples = log.samples;
@@ -342,7 +352,7 @@ GpsLog Gps::train(std::span<TrajectoryEnvironment* const> envs,
         cost.c0[t] /= static_cast<double>(cs.size());
       }
       const LinearGaussianController policy = linearise_policy(cs, J);
-      if (prev_dynamics[c]) {  // step 5, "classic": predicted against actual improvement
+      if (prev_dynamics[c] && !options_.redraw_conditions) {  // step 5, "classic": predicted against actual improvement
         double actual_cost = 0.0;
         for (const Sample* s : cs) actual_cost += s->cost_sum / static_cast<double>(cs.size());
         const double prev_laplace =

@@ -98,7 +98,7 @@ double RodEnvironment::cost(const Eigen::Ref<const Eigen::VectorXd>& x,
   const double time = t * plant_.dt_control(), L = length();
   const lie::Vector3 goal = goal_.position(time) / L;
   const lie::Vector3 velocity = goal_.velocity(time) * period() / L;
-  return options_.cost(x, a, goal, velocity, e);
+  return options_.cost(x, a, goal, velocity, t == episode_steps() - 1, e);
 }
 
 void RodEnvironment::set_fixed_length(int steps) {

@@ -51,7 +51,8 @@ scene::LearningGps read_gps(Checker& c, const Field& f) {
   if (!c.keys(f, {"conditions", "samples_per_condition", "steps", "policy_hidden", "activation",
                   "policy_learning_rate", "policy_epochs", "batch_size", "kl_step",
                   "min_step_mult", "max_step_mult", "initial_action", "initial_variance",
-                  "noise_smoothing", "prior_clusters", "prior_trajectories", "entropy", "cost"}))
+                  "noise_smoothing", "prior_clusters", "prior_trajectories", "entropy",
+                  "sample_on_policy", "redraw_conditions", "cost"}))
     return g;
   g.conditions = c.integer(Checker::child(f, "conditions"), 1);
   g.samples_per_condition = c.integer(Checker::child(f, "samples_per_condition"), 2);
@@ -66,6 +67,12 @@ scene::LearningGps read_gps(Checker& c, const Field& f) {
   g.kl_step = c.number(Checker::child(f, "kl_step"), Range::positive());
   g.min_step_mult = c.number(Checker::child(f, "min_step_mult"), Range::positive());
   g.max_step_mult = c.number(Checker::child(f, "max_step_mult"), Range::positive());
+  static constexpr std::string_view kBooleans[] = {"false", "true"};
+  if (auto k = c.choice(Checker::child(f, "sample_on_policy"), kBooleans)) g.sample_on_policy = *k == 1;
+  if (auto k = c.choice(Checker::child(f, "redraw_conditions"), kBooleans))
+    g.redraw_conditions = *k == 1;
+  if (g.redraw_conditions.value_or(false) && !g.sample_on_policy.value_or(false))
+    c.error(Checker::child(f, "redraw_conditions"), "needs sample_on_policy: true");
   g.entropy = c.number(Checker::child(f, "entropy"), Range::non_negative());
   g.initial_action = c.number(Checker::child(f, "initial_action"), Range{-1.0, 1.0, true, true});
   g.initial_variance = c.number(Checker::child(f, "initial_variance"), Range::positive());
@@ -74,12 +81,15 @@ scene::LearningGps read_gps(Checker& c, const Field& f) {
   g.prior_trajectories = c.integer(Checker::child(f, "prior_trajectories"), 1);
   const Field cost = Checker::child(f, "cost");
   if (cost.present() &&
-      c.keys(cost, {"alpha", "quadratic", "velocity", "action", "bound"})) {
+      c.keys(cost, {"alpha", "quadratic", "velocity", "action", "bound", "running", "final", "log"})) {
     g.cost_alpha = c.number(Checker::child(cost, "alpha"), Range::positive());
     g.cost_quadratic = c.number(Checker::child(cost, "quadratic"), Range::non_negative());
     g.cost_velocity = c.number(Checker::child(cost, "velocity"), Range::non_negative());
     g.cost_action = c.number(Checker::child(cost, "action"), Range::non_negative());
     g.cost_bound = c.number(Checker::child(cost, "bound"), Range::non_negative());
+    g.cost_running = c.number(Checker::child(cost, "running"), Range::non_negative());
+    g.cost_final = c.number(Checker::child(cost, "final"), Range::non_negative());
+    g.cost_log = c.number(Checker::child(cost, "log"), Range::non_negative());
   }
   if (g.min_step_mult && g.max_step_mult && *g.max_step_mult < *g.min_step_mult)
     c.error(Checker::child(f, "max_step_mult"),

@@ -218,8 +218,10 @@ struct LearningGps {
   std::optional<double> kl_step, min_step_mult, max_step_mult, entropy;
   std::optional<double> initial_action, initial_variance, noise_smoothing;
   std::optional<int> prior_clusters, prior_trajectories;
+  std::optional<bool> sample_on_policy, redraw_conditions;
   /// the cost (solvers/learning/tip_cost.hpp)
   std::optional<double> cost_alpha, cost_quadratic, cost_velocity, cost_action, cost_bound;
+  std::optional<double> cost_running, cost_final, cost_log;
 };
 
 /// learning: the settings of `rodlab train` (solvers/learning/rod_environment.hpp and

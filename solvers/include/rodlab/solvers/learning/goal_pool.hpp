@@ -13,7 +13,7 @@
 namespace rodlab::solvers::learning {
 
 struct GoalPoolOptions {
-  int dynamic_holds = 20;  ///< input vectors of the dynamic-workspace run (reach tasks)
+  int dynamic_holds = 100;  ///< input vectors of the dynamic-workspace run (reach tasks)
   int static_points = 50;  ///< static-workspace samples (track)
   std::uint64_t seed = 1;
 };

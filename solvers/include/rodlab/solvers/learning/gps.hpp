@@ -22,7 +22,15 @@
 //      observations, each weighted by the controller's precision S_t^-1 (minibatch Adam), and
 //      set S_pi = diag(1 / mean diag S_t^-1).
 //
-// Before the first C-step the policy is fitted to the initial controllers (step 7 first). Every
+// Before the first C-step the policy is fitted to the initial controllers (step 7 first).
+//
+// On-policy sampling (sample_on_policy; Montgomery & Levine 2016, section 4.2, "sampling from
+// the policy"): step 1 samples pi_theta itself, a = mu_theta(o) + S_pi^(1/2) noise, and the
+// local controllers only carry the C-step's result to the S-step. Nothing then ties a condition
+// to the previous iteration, so with redraw_conditions every iteration draws new conditions
+// (new goals): the policy meets M new targets per iteration instead of the same M throughout,
+// which is what "reach any point" asks of it. The step adjustment (5) compares a condition with
+// its previous iteration, so redrawn conditions keep kl_step fixed. Every
 // random draw comes from the seed: the same seed and number of environments give the same
 // policy bit for bit (the trajectories are assigned to environments in a fixed order).
 #include <cstdint>
@@ -44,15 +52,15 @@
 namespace rodlab::solvers::learning {
 
 struct GpsOptions {
-  int conditions = 4;             ///< M (the reference MDGPS example's 4)
-  int samples_per_condition = 5;  ///< N (the example's 5)
-  int steps = 40;                 ///< T control steps per trajectory
+  int conditions = 30;            ///< M per iteration (the reference MDGPS example: 4)
+  int samples_per_condition = 3;  ///< N (the example: 5)
+  int steps = 20;                 ///< T control steps per trajectory (1 s at dt_c = 0.05 s)
   std::vector<int> policy_hidden{64, 64};
   Activation hidden = Activation::relu;
   double policy_learning_rate = 1e-3;
   int policy_epochs = 50;  ///< S-step epochs over the iteration's samples
   int batch_size = 64;
-  double kl_step = 0.2;        ///< epsilon per step (the bound is kl_step x step_mult x T)
+  double kl_step = 0.5;        ///< epsilon per step (the bound is kl_step x step_mult x T)
   double min_step_mult = 0.5;  ///< the reference example's
   double max_step_mult = 3.0;
   double initial_action = 0.0;    ///< the first controllers' mean action
@@ -60,6 +68,8 @@ struct GpsOptions {
   /// Variance [steps^2] of the Gaussian filter smoothing the exploration noise in time
   /// (rescaled to unit variance); 0: white noise.
   double noise_smoothing = 2.0;
+  bool sample_on_policy = true;   ///< step 1 samples the policy, not the local controllers
+  bool redraw_conditions = true;  ///< new conditions every iteration (needs sample_on_policy)
   DynamicsFitOptions dynamics;
   KlStepOptions kl;
   std::uint64_t seed = 1;
@@ -112,8 +122,9 @@ class Gps {
 
   std::vector<Sample> collect(std::span<TrajectoryEnvironment* const> envs,
                               std::span<const std::uint64_t> seeds, int iteration);
+  /// One trajectory from the local controller p, or from the policy if p is null.
   Sample rollout(TrajectoryEnvironment& env, std::uint64_t episode_seed,
-                 const LinearGaussianController& p, std::uint64_t noise_seed) const;
+                 const LinearGaussianController* p, std::uint64_t noise_seed) const;
   /// pi_theta linearised about a condition's samples (step 4).
   LinearGaussianController linearise_policy(const std::vector<const Sample*>& samples,
                                             const Eigen::MatrixXd& J);
