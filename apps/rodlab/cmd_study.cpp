@@ -24,6 +24,7 @@
 #include "studies/stability.hpp"
 #include "studies/work_precision.hpp"
 #include "study_control.hpp"
+#include "study_learning.hpp"
 
 namespace rodlab::cli {
 
@@ -34,8 +35,8 @@ using solvers::Problem;
 using study::Json;
 
 constexpr std::array<std::string_view, 2> kPositionals{"KIND", "SCENE"};
-constexpr std::array<std::string_view, 5> kKinds{"convergence", "work-precision", "stability",
-                                                 "recommend", "control"};
+constexpr std::array<std::string_view, 6> kKinds{"convergence", "work-precision", "stability",
+                                                 "recommend", "control", "learning"};
 constexpr std::array<std::string_view, 3> kReferences{"kinsol", "ida", "chebyshev"};
 constexpr OptionSpec kStudyTolOption{
     "--tol", "X",
@@ -61,12 +62,15 @@ constexpr std::array<OptionSpec, 13> kSweepOptions{
     OptionSpec{"--out", "DIR", "directory for the study's data (default out/study-KIND)"},
     kSetOption};
 
-/// Every option of `rodlab study`: the sweep kinds' and control's.
+/// Every option of `rodlab study`: the sweep kinds', control's and learning's.
 constexpr auto kOptions = [] {
-  std::array<OptionSpec, kSweepOptions.size() + kStudyControlOptions.size()> all{};
+  std::array<OptionSpec, kSweepOptions.size() + kStudyControlOptions.size() +
+                             kStudyLearningOptions.size()>
+      all{};
   std::size_t i = 0;
   for (const auto& o : kSweepOptions) all[i++] = o;
   for (const auto& o : kStudyControlOptions) all[i++] = o;
+  for (const auto& o : kStudyLearningOptions) all[i++] = o;
   return all;
 }();
 
@@ -145,6 +149,9 @@ void check_kind_options(OptionReader& reader, const std::string& kind) {
   for (const auto& o : kStudyControlOptions)
     if (a.has(o.name))
       reader.problem(std::string(o.name) + ": only `rodlab study control` takes it");
+  for (const auto& o : kStudyLearningOptions)
+    if (a.has(o.name))
+      reader.problem(std::string(o.name) + ": only `rodlab study learning` takes it");
   if (kind == "recommend" && !a.has("--tol"))
     reader.problem("--tol: `rodlab study recommend` needs the tip error to reach, e.g. --tol 1e-6");
 }
@@ -344,6 +351,7 @@ int run_stability_kind(const study::Settings& settings, const study::Executor& e
 int run(const Invocation& inv) {
   const std::string kind = inv.args.positionals().front();
   if (kind == "control") return run_control_study_kind(inv);
+  if (kind == "learning") return run_learning_study_kind(inv);
   OptionReader reader(inv.args);
   bool kind_ok = false;
   for (const auto k : kKinds) kind_ok = kind_ok || k == kind;
@@ -413,7 +421,8 @@ const Command& study_command() {
   static const Command command{
       "study",
       "KIND SCENE [options]",
-      "convergence, work-precision, stability studies; scheme recommendation; Table 4.1 (control)",
+      "convergence, work-precision, stability studies; scheme recommendation; Table 4.1 (control, "
+      "learning)",
       "KIND is one of:\n"
       "  convergence      error against the reference as the nodes (or dt) are refined; observed\n"
       "                   order (DIR/convergence.csv, convergence_orders.csv, study.json);\n"
@@ -432,6 +441,13 @@ const Command& study_command() {
       "                   every --horizons (DIR/table.csv, table.md, study.json, runs/*.json,\n"
       "                   figures/ with python3-matplotlib); the options marked control: are\n"
       "                   its own, --nodes takes one N (docs/control.md)\n"
+      "  learning         Table 4.1's DDPG and GPS columns and learning curves: rodlab train\n"
+      "                   and rodlab control --controller policy per algorithm, task (--tasks\n"
+      "                   reach-one,reach-any,track), seed (--seeds K) and 1/4, 1/2, 1 of the\n"
+      "                   task's sample budget (--budget-scale X); --jobs J environments per\n"
+      "                   training; --targets, --seed: the reach-any evaluation targets\n"
+      "                   (DIR/table.md, study.json, policies/, results/, figures/;\n"
+      "                   docs/learning.md)\n"
       "A study is a statics study unless its schemes, its reference, --dt or --t-end make it a\n"
       "dynamics one (stability always is). Without --schemes, every scheme of the\n"
       "class takes part. The options and the scene are checked before anything runs.\n"

@@ -272,8 +272,12 @@ int run(const Invocation& inv) {
   const bool gps = t.algorithm == "gps";
   if (scene.learning) apply_learning(*scene.learning, eo, gp, d, g);
   if (gps && eo.task == l::LearningTask::reach_one) g.conditions = 1;  // one target
-  if (gps && eo.task == l::LearningTask::track && !(scene.learning && scene.learning->gps.steps))
-    g.steps = static_cast<int>(std::ceil(eo.track_duration / eo.plant.dt_control - 1e-9));
+  if (gps && eo.task == l::LearningTask::track) {  // a path's length, fewer conditions
+    const scene::LearningGps none;
+    const scene::LearningGps& set = scene.learning ? scene.learning->gps : none;
+    if (!set.steps) g.steps = static_cast<int>(std::ceil(eo.track_duration / eo.plant.dt_control - 1e-9));
+    if (!set.conditions) g.conditions = l::kGpsTrackConditions;
+  }
   if (gps && t.samples < static_cast<long>(g.conditions) * g.samples_per_condition * g.steps)
     throw UsageError(rodlab::format(
         "--samples: GPS needs at least one iteration, {} conditions x {} trajectories x {} steps "

@@ -83,7 +83,7 @@ BOOST_AUTO_TEST_CASE(quick_suite_writes_the_whole_report) {
   std::set<std::string> families;
   for (const auto& c : j["checks"]) families.insert(c["family"].get<std::string>());
   BOOST_TEST((families == std::set<std::string>{"scenes", "statics", "dynamics", "studies", "control",
-                                                "extremes"}));
+                                                "learning", "extremes"}));
   // The studies family: recommend answers for a statics and a dynamics tolerance, the front.
   int statics_recommends = 0, dynamics_recommends = 0, fronts = 0;
   for (const auto& c : j["checks"]) {

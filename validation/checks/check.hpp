@@ -161,6 +161,11 @@ std::vector<Check> study_checks(const ValidationContext& context);
 /// circle; --full: the whole table), checked against Table 4.1's NLSQ Implicit columns.
 std::vector<Check> control_checks(const ValidationContext& context);
 
+/// learning_checks.cpp: the DDPG and GPS columns of Table 4.1 by `rodlab study learning`
+/// (--quick: reach-one, one seed; --full: three tasks, five seeds, learning curves), checked
+/// against issue #15's bounds.
+std::vector<Check> learning_checks(const ValidationContext& context);
+
 /// extremes_checks.cpp: every scheme at the extremes of E, N and dt, run as child processes:
 /// exit 0 only with finite results, otherwise exit 1 with a reason or exit 2 up front; no crash,
 /// no hang past the budget; the map of what runs.

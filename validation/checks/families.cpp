@@ -9,7 +9,7 @@ namespace rodlab::validation {
 
 std::span<const CheckFamily> check_families() {
   // Add a family here (and its function in its own file, declared in validation_checks.hpp).
-  static const std::array<CheckFamily, 6> families{{
+  static const std::array<CheckFamily, 7> families{{
       {"scenes", "example scenes load; derived quantities equal their closed forms", &scene_checks},
       {"statics", "statics schemes on the thesis's 2.7 problems and closed forms", &statics_checks},
       {"dynamics",
@@ -27,6 +27,11 @@ std::span<const CheckFamily> check_families() {
        "on the implicit midpoint reaches every dynamic-workspace target and tracks the middle "
        "circle below the thesis' error (--full: every column, task and horizon)",
        &control_checks},
+      {"learning",
+       "the thesis' Table 4.1 learning columns by `rodlab study learning` on the cable robot: "
+       "DDPG and GPS policies reach one dynamic-workspace point (--full: any point over five "
+       "seeds, the middle circle, learning curves), in real time",
+       &learning_checks},
       {"extremes",
        "every scheme at the extremes of material (E 1e3 .. 2e11 Pa), mesh (N 2 .. 1000) and step "
        "(dt 1e-7 .. 1 s), run as `rodlab` child processes: exit 0 only with finite results, "

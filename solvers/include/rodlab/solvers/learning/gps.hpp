@@ -51,6 +51,11 @@
 
 namespace rodlab::solvers::learning {
 
+/// Conditions per iteration for track, whose trajectories are a whole path (80 steps of a 4 s
+/// path at dt_c = 0.05 s): measured (seed 1, 50 400 samples), the middle circle at 1.92 % of L
+/// with 10, 2.71 % with 30 (docs/learning.md).
+inline constexpr int kGpsTrackConditions = 10;
+
 struct GpsOptions {
   int conditions = 30;            ///< M per iteration (the reference MDGPS example: 4)
   int samples_per_condition = 3;  ///< N (the example: 5)
