@@ -224,3 +224,96 @@ BOOST_AUTO_TEST_CASE(a_failed_step_is_reported_and_observes_nothing_new) {
   BOOST_TEST(tr.error == (Vector3(0, 0, L) - env.goal().position(0.0)).norm(),
              boost::test_tools::tolerance(1e-12));
 }
+
+// GPS's cost (tip_cost.hpp) and its expansion: value, gradient and Hessian against central
+// differences (h = 1e-6 and 1e-4) at a point where every term is active (an action beyond the
+// box, a velocity error), before and at the last step (running and final weights differ).
+BOOST_AUTO_TEST_CASE(gps_cost_derivatives_match_finite_differences) {
+  l::TipCost cost;
+  cost.velocity = 0.7;
+  cost.running = 0.8;
+  cost.final = 5.0;
+  const Eigen::Vector3d goal(0.2, -0.1, 0.9), goal_velocity(0.05, 0.0, -0.02);
+  Eigen::VectorXd x(8), a(3);
+  x << 0.25, -0.02, 0.93, 0.1, -0.05, 0.02, 0.3, -0.4;
+  a << 1.3, -0.2, -1.6;
+  for (const bool last : {false, true}) {
+    l::CostExpansion e;
+    const double value = cost(x, a, goal, goal_velocity, last, &e);
+    BOOST_TEST(value == cost(x, a, goal, goal_velocity, last, nullptr));
+    const auto l_of = [&](const Eigen::VectorXd& xx, const Eigen::VectorXd& aa) {
+      return cost(xx, aa, goal, goal_velocity, last, nullptr);
+    };
+    const auto grad_of = [&](const Eigen::VectorXd& xx, const Eigen::VectorXd& aa) {
+      l::CostExpansion g;
+      cost(xx, aa, goal, goal_velocity, last, &g);
+      Eigen::VectorXd out(11);
+      out << g.lx, g.la;
+      return out;
+    };
+    Eigen::VectorXd z(11);
+    z << x, a;
+    Eigen::VectorXd g(11);
+    g << e.lx, e.la;
+    Eigen::MatrixXd H(11, 11);
+    H << e.lxx, e.lax.transpose(), e.lax, e.laa;
+    for (int i = 0; i < 11; ++i) {
+      Eigen::VectorXd zp = z, zm = z;
+      zp[i] += 1e-6;
+      zm[i] -= 1e-6;
+      const double fd = (l_of(zp.head(8), zp.tail(3)) - l_of(zm.head(8), zm.tail(3))) / 2e-6;
+      BOOST_TEST(g[i] == fd, boost::test_tools::tolerance(1e-6));
+      zp[i] += 1e-4 - 1e-6;
+      zm[i] -= 1e-4 - 1e-6;
+      const Eigen::VectorXd hd =
+          (grad_of(zp.head(8), zp.tail(3)) - grad_of(zm.head(8), zm.tail(3))) / 2e-4;
+      BOOST_TEST((hd - H.col(i)).norm() < 1e-5 * std::max(1.0, H.col(i).norm()));
+    }
+  }
+}
+
+// The GPS interface of the rod's environment: the state is the observation without the goal,
+// o = J x + goal (J a 0/1 selection), with track's goal velocity and K = 2 nodes; in fixed-length
+// episodes a success does not end the episode (holding a quasi-static tip's input, which ends
+// a normal episode early, runs all 30 steps).
+BOOST_AUTO_TEST_CASE(gps_state_and_fixed_length_episodes) {
+  l::RodEnvironment env(cable_robot(), options(l::LearningTask::track, 2), pool());
+  const int n = env.state_size(), no = env.observation_size();
+  BOOST_TEST(n == 6 + 2 * 12);
+  BOOST_TEST(no == n + 6);
+  std::vector<double> o(static_cast<std::size_t>(no)), x(static_cast<std::size_t>(n));
+  env.reset(5, o);
+  const std::vector<double> a{0.6, -1.0, -0.2, -1.0};
+  for (int k = 0; k < 5; ++k) env.step(a, o);
+  env.state(x);
+  const Eigen::VectorXd ox = env.observation_jacobian() * Eigen::Map<Eigen::VectorXd>(x.data(), n);
+  for (int i = 0; i < no; ++i) {
+    const bool goal_entry = i >= 6 && i < 12;
+    if (!goal_entry) BOOST_TEST(ox[i] == o[static_cast<std::size_t>(i)]);
+    if (goal_entry) BOOST_TEST(ox[i] == 0.0);
+  }
+  // the cost at the state: (4.40)'s |d| / beta term grows with the distance to the goal
+  const Eigen::VectorXd xv = Eigen::Map<Eigen::VectorXd>(x.data(), n);
+  const Eigen::VectorXd av = Eigen::Map<const Eigen::VectorXd>(a.data(), 4);
+  BOOST_TEST(std::isfinite(env.cost(xv, av, 5, nullptr)));
+
+  auto scene = cable_robot();
+  rodlab::solvers::control::InverseStaticsOptions is;
+  is.statics.nodes = 10;
+  rodlab::solvers::control::InverseStatics statics(scene, is);
+  const auto r = statics.solve(Vector3(0.02, 0.0, 0.097));
+  BOOST_TEST_REQUIRE(r.converged);
+  l::RodEnvironment reach(scene, options(l::LearningTask::reach_one), {{r.tip}});
+  reach.set_fixed_length(30);
+  std::vector<double> o9(9), u(4);
+  for (int k = 0; k < 4; ++k) u[k] = 2.0 * r.u[k] / 0.5 - 1.0;
+  reach.reset(1, o9);
+  int steps = 0, successes = 0;
+  for (l::Transition tr; !tr.done; ++steps) {
+    tr = reach.step(u, o9);
+    successes += tr.success ? 1 : 0;
+    BOOST_TEST(!tr.terminal);
+  }
+  BOOST_TEST(steps == 30);
+  BOOST_TEST(successes > 0);
+}
