@@ -248,6 +248,57 @@ Trained train_gps(std::span<l::RodEnvironment* const> envs, const l::GpsOptions&
   return r;
 }
 
+/// GPS's task-dependent settings: one condition for reach-one's one target; for track, a
+/// path's steps and fewer conditions (unless the scene sets them). Throws UsageError when the
+/// budget does not hold one iteration.
+void apply_gps_task(const scene::Scene& scene, const l::EnvironmentOptions& eo, long samples,
+                    l::GpsOptions& g) {
+  if (eo.task == l::LearningTask::reach_one) g.conditions = 1;
+  if (eo.task == l::LearningTask::track) {
+    const scene::LearningGps none;
+    const scene::LearningGps& set = scene.learning ? scene.learning->gps : none;
+    if (!set.steps)
+      g.steps = static_cast<int>(std::ceil(eo.track_duration / eo.plant.dt_control - 1e-9));
+    if (!set.conditions) g.conditions = l::kGpsTrackConditions;
+  }
+  const long iteration = static_cast<long>(g.conditions) * g.samples_per_condition * g.steps;
+  if (samples < iteration)
+    throw UsageError(rodlab::format(
+        "--samples: GPS needs at least one iteration, {} conditions x {} trajectories x {} steps "
+        "= {} samples (got {})",
+        g.conditions, g.samples_per_condition, g.steps, iteration, samples));
+}
+
+/// The table printed after training.
+void print_summary(const TrainSettings& t, const l::Policy& p, const l::GoalPool& pool,
+                   l::LearningTask task, const Trained& trained) {
+  io::TextTable table;
+  table.add_row({"trained", t.algorithm + " on " + t.task + ", " + p.scheme + " N = " +
+                                std::to_string(p.nodes) + ", dt_control " +
+                                io::format_number(p.dt_control) + " s, seed " +
+                                std::to_string(t.seed) + ", " + std::to_string(t.jobs) +
+                                " environment(s) in parallel"});
+  if (task == l::LearningTask::reach_one) {
+    const auto& g = pool.points.front();
+    table.add_row({"target", rodlab::format("[{:g}, {:g}, {:g}] m, {:g} mm from the closest "
+                                            "quasi-static tip",
+                                            g[0], g[1], g[2], 1e3 * pool.beyond_static)});
+  } else {
+    table.add_row({"goals", std::to_string(pool.points.size()) + " candidate points"});
+  }
+  table.add_row({"samples", std::to_string(trained.samples) + " in " +
+                                std::to_string(trained.episodes) + " episodes (" +
+                                std::to_string(trained.failed) + " ended by a failed step)"});
+  if (trained.failed > 0) table.add_row({"first failure", trained.first_failure});
+  table.add_row({"success", io::format_number(100.0 * trained.success_rate) + " %, " +
+                                trained.detail});
+  table.add_row({"wall time",
+                 io::format_number(trained.wall_time_s) + " s (" +
+                     io::format_number(trained.samples / std::max(trained.wall_time_s, 1e-9)) +
+                     " samples/s)"});
+  std::cout << table.render() << "policy written to " << t.out.string() << '\n';
+}
+
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);
   const SolveOptions options = read_solve_options(reader, solvers::Problem::dynamics, "train");
@@ -271,19 +322,7 @@ int run(const Invocation& inv) {
   g.seed = t.seed;
   const bool gps = t.algorithm == "gps";
   if (scene.learning) apply_learning(*scene.learning, eo, gp, d, g);
-  if (gps && eo.task == l::LearningTask::reach_one) g.conditions = 1;  // one target
-  if (gps && eo.task == l::LearningTask::track) {  // a path's length, fewer conditions
-    const scene::LearningGps none;
-    const scene::LearningGps& set = scene.learning ? scene.learning->gps : none;
-    if (!set.steps) g.steps = static_cast<int>(std::ceil(eo.track_duration / eo.plant.dt_control - 1e-9));
-    if (!set.conditions) g.conditions = l::kGpsTrackConditions;
-  }
-  if (gps && t.samples < static_cast<long>(g.conditions) * g.samples_per_condition * g.steps)
-    throw UsageError(rodlab::format(
-        "--samples: GPS needs at least one iteration, {} conditions x {} trajectories x {} steps "
-        "= {} samples (got {})",
-        g.conditions, g.samples_per_condition, g.steps,
-        static_cast<long>(g.conditions) * g.samples_per_condition * g.steps, t.samples));
+  if (gps) apply_gps_task(scene, eo, t.samples, g);
 
   const l::GoalPool pool = l::make_goal_pool(scene, eo, gp);
   std::vector<std::unique_ptr<l::RodEnvironment>> envs;
@@ -318,31 +357,7 @@ int run(const Invocation& inv) {
   p.network = trained.network;
   io::write_file_atomically(t.out, l::to_json(p));
 
-  io::TextTable table;
-  table.add_row({"trained", t.algorithm + " on " + t.task + ", " + p.scheme + " N = " +
-                                std::to_string(p.nodes) + ", dt_control " +
-                                io::format_number(p.dt_control) + " s, seed " +
-                                std::to_string(t.seed) + ", " + std::to_string(t.jobs) +
-                                " environment(s) in parallel"});
-  if (eo.task == l::LearningTask::reach_one) {
-    const auto& g = pool.points.front();
-    table.add_row({"target", rodlab::format("[{:g}, {:g}, {:g}] m, {:g} mm from the closest "
-                                            "quasi-static tip",
-                                            g[0], g[1], g[2], 1e3 * pool.beyond_static)});
-  } else {
-    table.add_row({"goals", std::to_string(pool.points.size()) + " candidate points"});
-  }
-  table.add_row({"samples", std::to_string(trained.samples) + " in " +
-                                std::to_string(trained.episodes) + " episodes (" +
-                                std::to_string(trained.failed) + " ended by a failed step)"});
-  if (trained.failed > 0) table.add_row({"first failure", trained.first_failure});
-  table.add_row({"success", io::format_number(100.0 * trained.success_rate) + " %, " +
-                                trained.detail});
-  table.add_row({"wall time",
-                 io::format_number(trained.wall_time_s) + " s (" +
-                     io::format_number(trained.samples / std::max(trained.wall_time_s, 1e-9)) +
-                     " samples/s)"});
-  std::cout << table.render() << "policy written to " << t.out.string() << '\n';
+  print_summary(t, p, pool, eo.task, trained);
   return kSolved;
 }
 

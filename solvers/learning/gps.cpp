@@ -264,6 +264,59 @@ double Gps::fit_policy(const std::vector<std::vector<const Sample*>>& by_conditi
   return r.epoch_loss.empty() ? 0.0 : r.epoch_loss.back();
 }
 
+namespace {
+
+/// The mean of the samples' quadratic cost expansions, step by step (step 3).
+QuadraticCost mean_cost(const std::vector<const Gps::Sample*>& samples);
+
+}  // namespace
+
+/// What a condition carries from one iteration to the next: the dual variable, the step
+/// multiplier, and the previous fits for the step adjustment.
+struct Gps::Condition {
+  double eta = 1.0, step_mult = 1.0;
+  std::optional<LinearGaussianDynamics> dynamics;
+  QuadraticCost cost;
+  LinearGaussianController policy;
+};
+
+void Gps::adjust_step(Condition& c, const LinearGaussianController& policy,
+                      const std::vector<const Sample*>& samples) const {
+  // the reference's "classic" rule: the improvement the previous step predicted (under the
+  // previous fit) against the one the samples measured
+  double actual_cost = 0.0;
+  for (const Sample* s : samples) actual_cost += s->cost_sum / static_cast<double>(samples.size());
+  const double prev_laplace = expected_cost(propagate(c.policy, *c.dynamics), c.cost);
+  const double cur_laplace = expected_cost(propagate(policy, *c.dynamics), c.cost);
+  const double predicted = prev_laplace - cur_laplace;
+  const double actual = prev_laplace - actual_cost;
+  // improvement ~ predicted/KL * KL + penalty KL^2 is best at KL' = pred / (2 (pred - act)) KL
+  const double mult = std::clamp(predicted / (2.0 * std::max(1e-4, predicted - actual)), 0.1, 5.0);
+  c.step_mult = std::clamp(mult * c.step_mult, options_.min_step_mult, options_.max_step_mult);
+}
+
+std::optional<KlStep> Gps::improve(Condition& c, const std::vector<const Sample*>& samples,
+                                   const DynamicsFitter& fitter, const Eigen::MatrixXd& J) {
+  if (samples.size() < 2) return std::nullopt;  // too few trajectories survived: keep it
+  std::vector<Eigen::MatrixXd> X, U;
+  for (const Sample* s : samples) {
+    X.push_back(s->X);
+    U.push_back(s->U);
+  }
+  LinearGaussianDynamics dynamics = fitter.fit(X, U);  // step 2
+  QuadraticCost cost = mean_cost(samples);              // step 3
+  LinearGaussianController policy = linearise_policy(samples, J);  // step 4
+  if (c.dynamics && !options_.redraw_conditions) adjust_step(c, policy, samples);  // step 5
+  KlStep step = kl_constrained_lqg(dynamics, cost, policy,  // step 6
+                                   options_.kl_step * c.step_mult * options_.steps, c.eta,
+                                   options_.kl);
+  c.eta = step.eta;
+  c.dynamics = std::move(dynamics);
+  c.cost = std::move(cost);
+  c.policy = std::move(policy);
+  return step;
+}
+
 GpsLog Gps::train(std::span<TrajectoryEnvironment* const> envs,
                   std::span<const std::uint64_t> seeds, long samples,
                   const std::function<void(const GpsIteration&)>& progress) {
@@ -288,11 +341,7 @@ GpsLog Gps::train(std::span<TrajectoryEnvironment* const> envs,
                              T, n_, Eigen::VectorXd::Constant(m_, options_.initial_action),
                              options_.initial_variance));
   DynamicsFitter fitter(n_, m_, options_.dynamics);
-  std::vector<double> eta(M, 1.0), step_mult(M, 1.0);
-  // the previous iteration's fits, for the step adjustment
-  std::vector<std::optional<LinearGaussianDynamics>> prev_dynamics(M);
-  std::vector<QuadraticCost> prev_cost(M);
-  std::vector<LinearGaussianController> prev_policy(M);
+  std::vector<Condition> state(static_cast<std::size_t>(M));
 
   GpsLog log;
   const auto start = std::chrono::steady_clock::now();
@@ -300,91 +349,34 @@ GpsLog Gps::train(std::span<TrajectoryEnvironment* const> envs,
   for (int itr = 0; log.samples + per_iteration <= samples; ++itr) {
     if (options_.redraw_conditions && itr > 0)
       for (int c = 0; c < M; ++c) conditions[c] = mix(seeds[c] ^ mix(0xC0DEULL + itr));
-    std::vector<Sample> all = collect(envs, conditions, itr);
+    const std::vector<Sample> all = collect(envs, conditions, itr);  // step 1
     log.samples += per_iteration;
-    GpsIteration it;
+    GpsIteration it = summarise(all);
     it.samples = log.samples;
-    it.trajectories = static_cast<int>(all.size());
     std::vector<std::vector<const Sample*>> by_condition(M);
     std::vector<Eigen::MatrixXd> Xs, Us;
-    for (const Sample& s : all) {
-      if (s.failed) {
-        if (it.failed++ == 0) it.first_failure = s.reason;
-        continue;
+    for (const Sample& s : all)
+      if (!s.failed) {
+        by_condition[s.condition].push_back(&s);
+        Xs.push_back(s.X);
+        Us.push_back(s.U);
       }
-      by_condition[s.condition].push_back(&s);
-      Xs.push_back(s.X);
-      Us.push_back(s.U);
-      it.mean_cost += s.cost_sum;
-      it.success_rate += s.success ? 1.0 : 0.0;
-      it.mean_min_error += s.min_error;
-      it.mean_final_error += s.final_error;
-    }
-    const int valid = it.trajectories - it.failed;
-    if (valid > 0) {
-      it.mean_cost /= valid;
-      it.success_rate /= valid;
-      it.mean_min_error /= valid;
-      it.mean_final_error /= valid;
-      fitter.update_prior(Xs, Us);
-    }
+    if (!Xs.empty()) fitter.update_prior(Xs, Us);
     if (itr == 0) fit_policy(by_condition, controllers_);  // the policy catches up first
-    std::vector<LinearGaussianController> next = controllers_;
     int updated = 0;
     for (int c = 0; c < M; ++c) {
-      const auto& cs = by_condition[c];
-      if (cs.size() < 2) continue;  // too few trajectories survived: keep the controller
-      std::vector<Eigen::MatrixXd> X, U;
-      for (const Sample* s : cs) {
-        X.push_back(s->X);
-        U.push_back(s->U);
-      }
-      const LinearGaussianDynamics dynamics = fitter.fit(X, U);
-      QuadraticCost cost = cs.front()->cost;
-      for (int t = 0; t < T; ++t) {
-        for (std::size_t i = 1; i < cs.size(); ++i) {
-          cost.C[t] += cs[i]->cost.C[t];
-          cost.c[t] += cs[i]->cost.c[t];
-          cost.c0[t] += cs[i]->cost.c0[t];
-        }
-        cost.C[t] /= static_cast<double>(cs.size());
-        cost.c[t] /= static_cast<double>(cs.size());
-        cost.c0[t] /= static_cast<double>(cs.size());
-      }
-      const LinearGaussianController policy = linearise_policy(cs, J);
-      if (prev_dynamics[c] && !options_.redraw_conditions) {  // step 5, "classic": predicted against actual improvement
-        double actual_cost = 0.0;
-        for (const Sample* s : cs) actual_cost += s->cost_sum / static_cast<double>(cs.size());
-        const double prev_laplace =
-            expected_cost(propagate(prev_policy[c], *prev_dynamics[c]), prev_cost[c]);
-        const double cur_laplace =
-            expected_cost(propagate(policy, *prev_dynamics[c]), prev_cost[c]);
-        const double predicted = prev_laplace - cur_laplace;
-        const double actual = prev_laplace - actual_cost;
-        // improvement ~ predicted/KL * KL + penalty KL^2 is best at KL' = pred / (2 (pred - act)) KL
-        const double mult =
-            std::clamp(predicted / (2.0 * std::max(1e-4, predicted - actual)), 0.1, 5.0);
-        step_mult[c] =
-            std::clamp(mult * step_mult[c], options_.min_step_mult, options_.max_step_mult);
-      }
-      const KlStep step = kl_constrained_lqg(dynamics, cost, policy,
-                                             options_.kl_step * step_mult[c] * T, eta[c],
-                                             options_.kl);
-      next[c] = step.controller;
-      eta[c] = step.eta;
-      it.mean_kl += step.kl / T;
-      it.mean_step_mult += step_mult[c];
+      const auto step = improve(state[c], by_condition[c], fitter, J);
+      if (!step) continue;
+      controllers_[c] = step->controller;
+      it.mean_kl += step->kl / T;
+      it.mean_step_mult += state[c].step_mult;
       ++updated;
-      prev_dynamics[c] = dynamics;
-      prev_cost[c] = std::move(cost);
-      prev_policy[c] = policy;
     }
     if (updated > 0) {
       it.mean_kl /= updated;
       it.mean_step_mult /= updated;
     }
-    controllers_ = std::move(next);
-    it.policy_loss = fit_policy(by_condition, controllers_);
+    it.policy_loss = fit_policy(by_condition, controllers_);  // step 7
     it.wall_time_s = seconds_since(start);
     log.iterations.push_back(it);
     if (progress) progress(it);
@@ -392,5 +384,47 @@ GpsLog Gps::train(std::span<TrajectoryEnvironment* const> envs,
   log.wall_time_s = seconds_since(start);
   return log;
 }
+
+GpsIteration Gps::summarise(const std::vector<Sample>& all) {
+  GpsIteration it;
+  it.trajectories = static_cast<int>(all.size());
+  for (const Sample& s : all) {
+    if (s.failed) {
+      if (it.failed++ == 0) it.first_failure = s.reason;
+      continue;
+    }
+    it.mean_cost += s.cost_sum;
+    it.success_rate += s.success ? 1.0 : 0.0;
+    it.mean_min_error += s.min_error;
+    it.mean_final_error += s.final_error;
+  }
+  if (const int valid = it.trajectories - it.failed; valid > 0) {
+    it.mean_cost /= valid;
+    it.success_rate /= valid;
+    it.mean_min_error /= valid;
+    it.mean_final_error /= valid;
+  }
+  return it;
+}
+
+namespace {
+
+QuadraticCost mean_cost(const std::vector<const Gps::Sample*>& samples) {
+  QuadraticCost cost = samples.front()->cost;
+  const double n = static_cast<double>(samples.size());
+  for (std::size_t t = 0; t < cost.C.size(); ++t) {
+    for (std::size_t i = 1; i < samples.size(); ++i) {
+      cost.C[t] += samples[i]->cost.C[t];
+      cost.c[t] += samples[i]->cost.c[t];
+      cost.c0[t] += samples[i]->cost.c0[t];
+    }
+    cost.C[t] /= n;
+    cost.c[t] /= n;
+    cost.c0[t] /= n;
+  }
+  return cost;
+}
+
+}  // namespace
 
 }  // namespace rodlab::solvers::learning

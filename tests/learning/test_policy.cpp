@@ -143,6 +143,7 @@ BOOST_AUTO_TEST_CASE(python_and_torch_read_the_policy_file) {
   if (out["torch"].is_null()) {
     BOOST_TEST_MESSAGE("torch not installed: the plain-Python evaluation only");
   } else {
+    BOOST_TEST_MESSAGE("torch: evaluated, and its state_dict written back");
     std::stringstream text;
     text << std::ifstream(dir / "torch.json").rdbuf();
     const l::Policy q = l::policy_from_json(text.str());

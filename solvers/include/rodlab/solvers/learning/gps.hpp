@@ -35,6 +35,7 @@
 // policy bit for bit (the trajectories are assigned to environments in a fixed order).
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -121,8 +122,9 @@ class Gps {
   const std::vector<LinearGaussianController>& controllers() const { return controllers_; }
   const GpsOptions& options() const { return options_; }
 
+  struct Sample;  ///< one trajectory (gps.cpp)
+
  private:
-  struct Sample;
   struct Condition;
 
   std::vector<Sample> collect(std::span<TrajectoryEnvironment* const> envs,
@@ -133,6 +135,14 @@ class Gps {
   /// pi_theta linearised about a condition's samples (step 4).
   LinearGaussianController linearise_policy(const std::vector<const Sample*>& samples,
                                             const Eigen::MatrixXd& J);
+  /// Steps 2-6 for one condition; nullopt (the controller kept) with fewer than 2 samples.
+  std::optional<KlStep> improve(Condition& c, const std::vector<const Sample*>& samples,
+                                const DynamicsFitter& fitter, const Eigen::MatrixXd& J);
+  /// Step 5: the KL multiplier from the previous step's predicted and actual improvement.
+  void adjust_step(Condition& c, const LinearGaussianController& policy,
+                   const std::vector<const Sample*>& samples) const;
+  /// The iteration's statistics over its trajectories.
+  static GpsIteration summarise(const std::vector<Sample>& all);
   /// The S-step (7) on every valid sample, towards `controllers`; returns the last epoch's loss.
   double fit_policy(const std::vector<std::vector<const Sample*>>& by_condition,
                     const std::vector<LinearGaussianController>& controllers);
