@@ -48,7 +48,8 @@ Eigen::MatrixXd smooth_noise(int m, int T, double s, std::mt19937_64& rng) {
   const double gain = std::sqrt(w.squaredNorm());
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(m, T);
   for (int t = 0; t < T; ++t)
-    for (int k = -half; k <= half; ++k) out.col(t) += w[k + half] * e.col(std::clamp(t + k, 0, T - 1));
+    for (int k = -half; k <= half; ++k)
+      out.col(t) += w[k + half] * e.col(std::clamp(t + k, 0, T - 1));
   return out / gain;
 }
 

@@ -4,7 +4,7 @@
 //
 //   controller   p(a_t | x_t) = N(K_t x_t + k_t, S_t)                   (local controllers; the
 //                                                                         policy's linearisation)
-//   dynamics     p(x_(t+1) | x_t, a_t) = N(F_t z_t + f_t, W_t)           (linear_gaussian_dynamics.hpp)
+//   dynamics     p(x_(t+1) | x_t, a_t) = N(F_t z_t + f_t, W_t)           (..._dynamics.hpp)
 //   cost         l_t(z) ~ 1/2 z^T C_t z + c_t^T z + c0_t                  (a quadratic expansion)
 //   trajectory   z_t ~ N(mu_t, Sigma_t)                                  (a controller under dynamics)
 //

@@ -99,8 +99,8 @@ class RodEnvironment final : public TrajectoryEnvironment {
   /// entries (the tip, its velocity, the K nodes' coordinates), so d o / d x is a selection.
   int state_size() const override { return observer_.size() - goal_entries(); }
   void state(std::span<double> x) const override;
-  double cost(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& a,
-              int t, CostExpansion* e) const override;
+  double cost(const Eigen::Ref<const Eigen::VectorXd>& x,
+              const Eigen::Ref<const Eigen::VectorXd>& a, int t, CostExpansion* e) const override;
   const Eigen::MatrixXd& observation_jacobian() const override { return observation_jacobian_; }
   void set_fixed_length(int steps) override;
 
