@@ -76,6 +76,7 @@ Plant::Plant(const scene::Scene& scene, const PlantOptions& options)
                                                               failure);
   if (!failure.empty()) throw std::invalid_argument("control: " + failure);
   stepper_ = stepper_factory(scheme.id)(*problem_, options.solver, initial);
+  before_step_ = snapshot();
 
   // characteristic sizes of the tangent coordinates (header)
   const double L = problem_->length();
@@ -123,7 +124,25 @@ dynamics::StepStatus Plant::each_substep(Substep substep) {
 }
 
 dynamics::StepStatus Plant::advance() {
-  return each_substep([this](int) { return stepper_->step(t_, dt_); });
+  save(before_step_);
+  dynamics::StepStatus status = each_substep([this](int) { return stepper_->step(t_, dt_); });
+  // A failed control step (single shooting that does not converge after an input jump) is
+  // repeated from its start in 2, then 4 and 8 times as many scheme steps: the same held input
+  // and ODE, solved with a finer step, as an ODE solver rejects a step.
+  for (int split = 2; !status.ok && split <= kMaxStepSplit; split *= 2) {
+    restore(before_step_);
+    const double dt = dt_ / split;
+    int iterations = status.iterations;
+    status = {};
+    for (int k = 0; k < substeps_ * split && status.ok; ++k) {
+      status = stepper_->step(t_, dt);
+      iterations += status.iterations;
+      if (status.ok) t_ += dt;
+    }
+    status.iterations = iterations;
+    if (status.ok) ++split_steps_;
+  }
+  return status;
 }
 
 dynamics::StepStatus Plant::advance_linearised(Eigen::MatrixXd& A, Eigen::MatrixXd& B,

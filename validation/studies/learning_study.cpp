@@ -190,6 +190,7 @@ std::vector<LearningPoint> learning_points(const LearningStudy& study) {
       // a failed evaluation still measured its episodes; a failed or timed-out training did not
       if (r.train_wall_time_s <= 0.0) continue;
       ++p.done;
+      if (r.status != "done") ++p.failed_evaluations;
       success.push_back(r.success_pct);
       best.push_back(r.best_error_pct_L);
       err.push_back(r.mean_error_pct_L);
@@ -248,7 +249,11 @@ std::string learning_table_markdown(const LearningStudy& study) {
          << number(full->wall_time_mean) << " | " << number(full->samples_per_s_mean) << " | "
          << number(full->real_time_ratio_max) << " | " << thesis_value(a, k) << " |"
          << (full->done < full->runs
-                 ? " (" + std::to_string(full->runs - full->done) + " runs failed)"
+                 ? " (" + std::to_string(full->runs - full->done) + " trainings failed)"
+                 : "")
+         << (full->failed_evaluations > 0
+                 ? " (" + std::to_string(full->failed_evaluations) +
+                       " evaluations ended in a failed plant step; their errors count)"
                  : "")
          << '\n';
     }

@@ -72,7 +72,8 @@ LearningStudy run_learning_study(const LearningStudySettings& s, const std::stri
 struct LearningPoint {
   std::string algorithm, task;
   long samples = 0;
-  int runs = 0, done = 0;
+  int runs = 0, done = 0;  ///< done: trained (the evaluation may still have failed)
+  int failed_evaluations = 0;  ///< trained, but a plant step of the evaluation failed
   double success_mean = 0, success_sd = 0, best_error_mean = 0, best_error_sd = 0,
          mean_error_mean = 0, mean_error_sd = 0, wall_time_mean = 0, samples_per_s_mean = 0,
          real_time_ratio_max = 0;

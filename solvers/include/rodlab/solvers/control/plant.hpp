@@ -72,10 +72,16 @@ class Plant {
   /// in [lower_k, upper_k] (controllers respect the bounds: a violation is a bug, not a clip).
   void set_input(const Eigen::Ref<const Eigen::VectorXd>& u);
   const Eigen::VectorXd& input() const { return u_; }
-  /// Advances one control step under the held input; a failed step (no convergence, instability)
-  /// is reported in the status and leaves the state where the scheme stopped. Throws
+  /// Advances one control step under the held input. A failed step (no convergence,
+  /// instability) is repeated from its start with finer steps (kMaxStepSplit); when that fails
+  /// too it is reported in the status and leaves the state where the scheme stopped. Throws
   /// WallTimeExceeded (common/deadline.hpp) once the thread's deadline has passed.
   dynamics::StepStatus advance();
+  /// A failed control step is repeated from its start with 2, 4, ... up to this many times as
+  /// many scheme steps (advance(); the same held input, a finer step).
+  static constexpr int kMaxStepSplit = 8;
+  /// Control steps that needed a finer step (advance()) since construction.
+  int split_steps() const { return split_steps_; }
 
   /// Whether advance_linearised() is available (the scheme differentiates its own step).
   bool has_step_linearisation() const { return stepper_->has_step_linearisation(); }
@@ -128,6 +134,8 @@ class Plant {
   Eigen::VectorXd x_other_, x_own_;         ///< set_state_of()'s workspace
   double dt_control_ = 0.0, dt_ = 0.0, t_ = 0.0;
   int substeps_ = 1;
+  PlantSnapshot before_step_;  ///< advance()'s start, for a repeat with a finer step
+  int split_steps_ = 0;
 };
 
 }  // namespace rodlab::solvers::control
