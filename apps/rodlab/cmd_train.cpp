@@ -211,7 +211,8 @@ Trained train_ddpg(std::span<l::LearningEnvironment* const> lanes, const l::Ddpg
 /// The GPS progress line, after every iteration.
 void print_gps_progress(const l::GpsIteration& it, long samples, double length) {
   std::cerr << "samples " << it.samples << "/" << samples << ", trajectories "
-            << it.trajectories << " (" << it.failed << " failed), mean cost "
+            << it.trajectories << " (" << it.failed << " failed), mean return "
+            << io::format_number(it.mean_return) << ", mean cost "
             << io::format_number(it.mean_cost) << ", success "
             << io::format_number(100.0 * it.success_rate) << " %, best error "
             << io::format_number(100.0 * it.mean_min_error / length) << " % L, KL/step "

@@ -63,7 +63,7 @@ struct Gps::Sample {
   int condition = 0;
   Eigen::MatrixXd X, U, O;  ///< states, actions, observations: one column per step
   QuadraticCost cost;       ///< the cost expanded about this sample, absolute coordinates
-  double cost_sum = 0.0, min_error = 0.0, final_error = 0.0;
+  double cost_sum = 0.0, return_sum = 0.0, min_error = 0.0, final_error = 0.0;
   bool success = false, failed = false;
   std::string reason;
 };
@@ -155,6 +155,7 @@ Gps::Sample Gps::rollout(TrajectoryEnvironment& env, std::uint64_t episode_seed,
       s.reason = tr.reason;
       return s;
     }
+    s.return_sum += tr.reward;
     s.min_error = std::min(s.min_error, tr.error);
     s.final_error = tr.error;
     s.success = s.success || tr.success;
@@ -395,12 +396,14 @@ GpsIteration Gps::summarise(const std::vector<Sample>& all) {
       continue;
     }
     it.mean_cost += s.cost_sum;
+    it.mean_return += s.return_sum;
     it.success_rate += s.success ? 1.0 : 0.0;
     it.mean_min_error += s.min_error;
     it.mean_final_error += s.final_error;
   }
   if (const int valid = it.trajectories - it.failed; valid > 0) {
     it.mean_cost /= valid;
+    it.mean_return /= valid;
     it.success_rate /= valid;
     it.mean_min_error /= valid;
     it.mean_final_error /= valid;

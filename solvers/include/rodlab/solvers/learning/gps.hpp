@@ -85,7 +85,8 @@ struct GpsOptions {
 struct GpsIteration {
   long samples = 0;  ///< environment steps so far, this iteration's included
   int trajectories = 0, failed = 0;
-  double mean_cost = 0.0;          ///< per trajectory
+  double mean_cost = 0.0;          ///< per trajectory (GPS's cost)
+  double mean_return = 0.0;        ///< per trajectory: the sum of the environment's rewards
   double success_rate = 0.0;       ///< of the iteration's trajectories
   double mean_min_error = 0.0;     ///< [the environment's error unit] best along a trajectory
   double mean_final_error = 0.0;
