@@ -94,7 +94,7 @@ BOOST_AUTO_TEST_CASE(bad_input_is_refused) {
   expect_bad_input(box, "train " + kScene + " --task reach-one --samples 10 --out p.json",
                    {"--algorithm", "required"});
   expect_bad_input(box, "train " + kScene + " --algorithm gps --task reach-one --samples 10",
-                   {"--samples", "GPS", "one iteration", "200"});
+                   {"--samples", "GPS", "one iteration", "= 60 samples"});
   expect_bad_input(box, "train " + kScene + " --algorithm ddpg --task reach-all --samples 10",
                    {"--task"});
   expect_bad_input(box, "train " + kScene + " --algorithm ddpg --task reach-one --samples 10 "
