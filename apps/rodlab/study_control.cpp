@@ -9,7 +9,7 @@
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
-#include "report/figures.hpp"
+#include "study_support.hpp"
 #include "studies/control_study.hpp"
 
 namespace rodlab::cli {
@@ -17,18 +17,6 @@ namespace rodlab::cli {
 namespace study = validation::study;
 
 namespace {
-
-/// Every name of `option` is one of `allowed`.
-void check_names(OptionReader& reader, std::string_view option, const auto& allowed) {
-  const auto names = reader.names(option);
-  if (!names) return;
-  for (const auto& n : *names)
-    if (std::find(std::begin(allowed), std::end(allowed), n) == std::end(allowed)) {
-      std::string list;
-      for (const std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      reader.problem(std::string(option) + ": unknown '" + n + "'; choose from " + list);
-    }
-}
 
 /// The settings from the command line (problems recorded in `reader`).
 study::ControlStudySettings read_settings(OptionReader& reader) {
@@ -72,21 +60,6 @@ void print_row(const study::ControlStudyRow& r) {
   std::cout << '\n' << std::flush;
 }
 
-/// The figures of the study's directory (figures.json), when python3 with matplotlib is there.
-void draw_figures(const study::ControlStudy& result, const std::string& dir) {
-  validation::ValidationReport index;
-  index.data_sets = study::control_study_data(result);
-  const auto status = validation::run_figure_script(
-      index, validation::figure_pythons(),
-      std::filesystem::path(RODLAB_SOURCE_DIR) / "validation" / "make_figures.py", dir);
-  std::cout << "figures " << status.state
-            << (status.state == "generated" ? ": " + dir + "/figures/"
-                                            : " (the study is complete without them)")
-            << '\n';
-  if (status.state != "generated" && !status.message.empty())
-    std::cout << "  " << status.message << '\n';
-}
-
 }  // namespace
 
 int run_control_study_kind(const Invocation& inv) {
@@ -115,7 +88,7 @@ int run_control_study_kind(const Invocation& inv) {
   const study::ControlStudy result = study::run_control_study(s, &print_row);
   study::write_control_study(result, dir);
   std::cout << '\n' << study::control_table_markdown(result) << "\nwritten: " << dir << '\n';
-  if (!inv.args.has("--no-figures")) draw_figures(result, dir);
+  if (!inv.args.has("--no-figures")) draw_study_figures(study::control_study_data(result), dir);
   const bool all_done = std::all_of(result.rows.begin(), result.rows.end(), [](const auto& r) {
     return r.status == "done";
   });

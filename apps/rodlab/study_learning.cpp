@@ -9,7 +9,7 @@
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
-#include "report/figures.hpp"
+#include "study_support.hpp"
 #include "studies/learning_study.hpp"
 
 namespace rodlab::cli {
@@ -17,20 +17,6 @@ namespace rodlab::cli {
 namespace study = validation::study;
 
 namespace {
-
-/// Every name of `option` is one of `allowed`.
-void check_names(OptionReader& reader, std::string_view option, const auto& allowed,
-                 std::vector<std::string>& into) {
-  const auto names = reader.names(option);
-  if (!names) return;
-  for (const auto& n : *names)
-    if (std::find(std::begin(allowed), std::end(allowed), n) == std::end(allowed)) {
-      std::string list;
-      for (const std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      reader.problem(std::string(option) + ": unknown '" + n + "'; choose from " + list);
-    }
-  into = *names;
-}
 
 /// The options of the other study kinds, refused here.
 constexpr std::string_view kNotForLearning[] = {
@@ -43,8 +29,10 @@ study::LearningStudySettings read_settings(OptionReader& reader) {
   for (const auto name : kNotForLearning)
     if (reader.arguments().has(name))
       reader.problem(std::string(name) + ": not an option of `rodlab study learning`");
-  check_names(reader, "--algorithms", study::kLearningAlgorithms, s.algorithms);
-  check_names(reader, "--tasks", study::kLearningTasks, s.tasks);
+  check_names(reader, "--algorithms", study::kLearningAlgorithms);
+  check_names(reader, "--tasks", study::kLearningTasks);
+  if (const auto v = reader.names("--algorithms")) s.algorithms = *v;
+  if (const auto v = reader.names("--tasks")) s.tasks = *v;
   if (const auto v = reader.integer("--seeds", 1)) s.seeds = *v;
   if (const auto v = reader.positive("--budget-scale")) s.budget_scale = *v;
   if (const auto v = reader.integer("--jobs", 1)) s.jobs = *v;
@@ -64,18 +52,6 @@ void print_row(const study::LearningStudyRow& r) {
               << io::format_number(r.train_wall_time_s) << " s";
   if (!r.reason.empty()) std::cout << " (" << r.reason << ")";
   std::cout << '\n' << std::flush;
-}
-
-void draw_figures(const study::LearningStudy& result, const std::string& dir) {
-  validation::ValidationReport index;
-  index.data_sets = study::learning_study_data(result);
-  const auto status = validation::run_figure_script(
-      index, validation::figure_pythons(),
-      std::filesystem::path(RODLAB_SOURCE_DIR) / "validation" / "make_figures.py", dir);
-  std::cout << "figures " << status.state
-            << (status.state == "generated" ? ": " + dir + "/figures/"
-                                            : " (the study is complete without them)")
-            << '\n';
 }
 
 }  // namespace
@@ -106,7 +82,7 @@ int run_learning_study_kind(const Invocation& inv) {
   const study::LearningStudy result = study::run_learning_study(s, dir, &print_row);
   study::write_learning_study(result, dir);
   std::cout << '\n' << study::learning_table_markdown(result) << "\nwritten: " << dir << '\n';
-  if (!inv.args.has("--no-figures")) draw_figures(result, dir);
+  if (!inv.args.has("--no-figures")) draw_study_figures(study::learning_study_data(result), dir);
   const bool all_done = std::all_of(result.rows.begin(), result.rows.end(),
                                     [](const auto& r) { return r.status == "done"; });
   return all_done ? kSolved : kNotConverged;

@@ -21,6 +21,7 @@ void shuffle(std::vector<Eigen::Index>& order, std::mt19937_64& rng) {
 template <class Scalar>
 struct Minibatch {
   typename Mlp<Scalar>::Matrix x, y, dloss_dy;
+  typename Mlp<Scalar>::Vector error;  ///< the weighted loss's y_j - t_j
   MlpWorkspace<Scalar> ws;
 };
 
@@ -76,9 +77,9 @@ RegressionResult fit_regression(Mlp<Scalar>& net, Adam<Scalar>& adam,
         const double scale = 1.0 / static_cast<double>(Y.rows() * size);
         for (Eigen::Index j = 0; j < size; ++j) {
           const auto P = weights->precision[weights->index[order[start + j]]].cast<Scalar>();
-          const typename Mlp<Scalar>::Vector e = b.dloss_dy.col(j);
-          loss_sum += static_cast<double>(e.dot(P * e)) * scale * size;
-          b.dloss_dy.col(j) = static_cast<Scalar>(2.0 * scale) * (P * e);
+          b.error = b.dloss_dy.col(j);
+          b.dloss_dy.col(j).noalias() = static_cast<Scalar>(2.0 * scale) * P * b.error;
+          loss_sum += 0.5 * static_cast<double>(b.error.dot(b.dloss_dy.col(j))) * size;
         }
       } else {
         loss_sum += static_cast<double>(mse_loss(prediction, b.y, &b.dloss_dy)) * size;

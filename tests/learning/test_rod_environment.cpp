@@ -41,6 +41,24 @@ l::GoalPool pool() {
            Vector3(-0.02, 0.02, 0.09), Vector3(-0.02, -0.02, 0.09)}};
 }
 
+/// A quasi-static tip and the actions that hold it: the tip of u = (0.3, 0, 0, 0) N, by inverse
+/// statics (N = 10) for a target next to it, which it then reports exactly.
+struct StaticTip {
+  Vector3 tip;
+  std::vector<double> actions;
+};
+StaticTip static_tip() {
+  rodlab::solvers::control::InverseStaticsOptions is;
+  is.statics.nodes = 10;
+  const auto scene = cable_robot();
+  rodlab::solvers::control::InverseStatics statics(scene, is);
+  const auto r = statics.solve(Vector3(0.02, 0.0, 0.097));
+  BOOST_TEST_REQUIRE(r.converged);
+  StaticTip s{r.tip, std::vector<double>(4)};
+  for (int k = 0; k < 4; ++k) s.actions[k] = 2.0 * r.u[k] / 0.5 - 1.0;
+  return s;
+}
+
 }  // namespace
 
 // (4.40) with beta = 0.3, L = 0.1 m: 0 on the target, -e / (beta L) inside beta L = 3 cm, -1
@@ -141,18 +159,11 @@ BOOST_AUTO_TEST_CASE(episodes_repeat_with_their_seed) {
 // holding the action of that input, the damped rod settles there and the episode ends in
 // success within 5 % of L before max_steps; a step after the end is refused.
 BOOST_AUTO_TEST_CASE(holding_the_right_input_reaches_its_static_tip) {
-  auto scene = cable_robot();
-  rodlab::solvers::control::InverseStaticsOptions is;
-  is.statics.nodes = 10;
-  rodlab::solvers::control::InverseStatics statics(scene, is);
-  // the tip of u = (0.3, 0, 0, 0): inverse statics for a target it then reports exactly
-  const auto r = statics.solve(Vector3(0.02, 0.0, 0.097));
-  BOOST_TEST_REQUIRE(r.converged);
+  const StaticTip r = static_tip();
   l::Goal goal;
   goal.point = r.tip;
-  l::RodEnvironment env(scene, options(l::LearningTask::reach_one), {{r.tip}});
-  std::vector<double> o(9), a(4);
-  for (int k = 0; k < 4; ++k) a[k] = 2.0 * r.u[k] / 0.5 - 1.0;
+  l::RodEnvironment env(cable_robot(), options(l::LearningTask::reach_one), {{r.tip}});
+  std::vector<double> o(9), a = r.actions;
   env.reset(goal, o);
   l::Transition tr;
   while (!tr.done) tr = env.step(a, o);
@@ -297,16 +308,10 @@ BOOST_AUTO_TEST_CASE(gps_state_and_fixed_length_episodes) {
   const Eigen::VectorXd av = Eigen::Map<const Eigen::VectorXd>(a.data(), 4);
   BOOST_TEST(std::isfinite(env.cost(xv, av, 5, nullptr)));
 
-  auto scene = cable_robot();
-  rodlab::solvers::control::InverseStaticsOptions is;
-  is.statics.nodes = 10;
-  rodlab::solvers::control::InverseStatics statics(scene, is);
-  const auto r = statics.solve(Vector3(0.02, 0.0, 0.097));
-  BOOST_TEST_REQUIRE(r.converged);
-  l::RodEnvironment reach(scene, options(l::LearningTask::reach_one), {{r.tip}});
+  const StaticTip r = static_tip();
+  l::RodEnvironment reach(cable_robot(), options(l::LearningTask::reach_one), {{r.tip}});
   reach.set_fixed_length(30);
-  std::vector<double> o9(9), u(4);
-  for (int k = 0; k < 4; ++k) u[k] = 2.0 * r.u[k] / 0.5 - 1.0;
+  std::vector<double> o9(9), u = r.actions;
   reach.reset(1, o9);
   int steps = 0, successes = 0;
   for (l::Transition tr; !tr.done; ++steps) {

@@ -11,7 +11,7 @@
 // With weights, sample j's error is weighted by a symmetric positive definite matrix P_j (GPS:
 // the precision of the controller whose action is the target, Levine & Abbeel 2014):
 //   L = 1 / (m N) sum_j (y_j - t_j)^T P_j (y_j - t_j),   dL/dy_j = 2 P_j (y_j - t_j) / (m N),
-// which is the mean squared error for P_j = I (the weighted loop allocates per sample).
+// which is the mean squared error for P_j = I.
 #include <cstdint>
 #include <span>
 #include <vector>
