@@ -144,7 +144,7 @@ const Command& control_command() {
       "drive the rod's tip with a controller (inverse statics, NLSQ-MPC, LQR, iLQR)",
       "Runs a controller on a task of the scene's control section (docs/control.md):\n"
       "reach (each target until the tip is within control.threshold * L, at most\n"
-      "control.max_steps control steps), hold (within the threshold for control.hold_steps\n"
+      "control.max_steps control steps; all of them with control.stop_at_success: false), hold (within the threshold for control.hold_steps\n"
       "steps in a row) or track (control.trajectory). Targets are control.targets, else\n"
       "--targets K (or control.target_count) drawn with --seed from the static workspace.\n"
       "nlsq-mpc plans --horizon steps of --dt-control on a dynamics scheme (--scheme, else\n"

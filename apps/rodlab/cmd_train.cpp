@@ -353,7 +353,8 @@ int run(const Invocation& inv) {
   p.period = env.period();
   p.lower = env.plant().lower();
   p.upper = env.plant().upper();
-  p.training = {trained.samples, trained.episodes, t.seed, trained.wall_time_s};
+  p.training = {trained.samples, trained.episodes, t.seed, trained.wall_time_s,
+                env.episode_steps()};
   if (eo.task == l::LearningTask::reach_one) p.goal = pool.points.front();
   p.network = trained.network;
   io::write_file_atomically(t.out, l::to_json(p));

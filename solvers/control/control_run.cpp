@@ -360,6 +360,7 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
     episode.target = target_at(0.0);
     const std::size_t first = out.series.t.size();
     int below = 0;
+    bool reached = false;
     auto t0 = Clock::now();  // the episode's set-up counts in its first step
     if (own_model) own_model->set_state_of(plant);
     if (std::string why = controller->start(model, episode.target); !why.empty()) {
@@ -387,12 +388,13 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
       record(out, e, t, d.u, plant.tip(), target_at(t), solve_time, d.iterations);
       const double error = out.series.error.back();
       below = error < threshold ? below + 1 : 0;
-      if (c.task == scene::ControlTask::reach && below > 0) break;
+      reached = reached || below > 0;
+      if (c.task == scene::ControlTask::reach && below > 0 && c.stop_at_success) break;
       if (c.task == scene::ControlTask::hold && below >= c.hold_steps) break;
     }
     close_episode(out, episode, first);
     episode.success = track ? episode.steps == steps && episode.mean_error < threshold
-                            : (c.task == scene::ControlTask::reach ? below > 0 : below >= c.hold_steps);
+                            : (c.task == scene::ControlTask::reach ? reached : below >= c.hold_steps);
     out.episodes.push_back(episode);
   }
 }

@@ -62,7 +62,8 @@ std::string to_json(const Policy& p) {
   j["training"] = {{"samples", p.training.samples},
                    {"episodes", p.training.episodes},
                    {"seed", p.training.seed},
-                   {"wall_time_s", p.training.wall_time_s}};
+                   {"wall_time_s", p.training.wall_time_s},
+                   {"episode_steps", p.training.episode_steps}};
   j["goal"] = p.goal ? Json::array({(*p.goal)[0], (*p.goal)[1], (*p.goal)[2]}) : Json(nullptr);
   j["network"] = Json::parse(to_json(p.network));
   return j.dump() + "\n";
@@ -106,6 +107,7 @@ Policy policy_from_json(std::string_view text) {
   p.training.episodes = get<long>(t, "training.", "episodes");
   p.training.seed = get<std::uint64_t>(t, "training.", "seed");
   p.training.wall_time_s = get<double>(t, "training.", "wall_time_s");
+  p.training.episode_steps = get<int>(t, "training.", "episode_steps");
   if (!field(j, "", "goal").is_null()) {
     const Eigen::VectorXd g = vector(j, "", "goal", 3);
     p.goal = lie::Vector3(g[0], g[1], g[2]);

@@ -68,6 +68,19 @@ BOOST_AUTO_TEST_CASE(gps_learns_to_reach_one_point) {
   BOOST_TEST(r["episodes"][0]["success"] == true);
   BOOST_TEST(double(r["episodes"][0]["min_error"]) < 0.005);
   BOOST_TEST(double(r["summary"]["real_time_ratio_max"]) < 0.01);
+  // the study's protocol (docs/learning.md "Study"): the whole training horizon (T = 20 steps,
+  // training.episode_steps) without stopping at success; the closest approach can only improve
+  // on the first step within the threshold, and success stays "reached at some step"
+  BOOST_TEST(p["training"]["episode_steps"] == 20);
+  const Run f = box.run("control " + kScene + " --controller policy --policy g.json --task reach "
+                        "--set control.stop_at_success=false --set control.max_steps=20 "
+                        "--out f.json");
+  BOOST_TEST_REQUIRE(f.status == 0, f.err);
+  const auto w = nlohmann::json::parse(read(box.work / "f.json"));
+  BOOST_TEST(w["episodes"][0]["steps"] == 20);
+  BOOST_TEST(w["episodes"][0]["success"] == true);
+  BOOST_TEST(int(r["episodes"][0]["steps"]) < 20);
+  BOOST_TEST(double(w["episodes"][0]["min_error"]) <= double(r["episodes"][0]["min_error"]));
 }
 
 // The scene's learning section reaches the trainer: a 16-unit actor (learning.ddpg.actor_hidden)

@@ -33,7 +33,7 @@ l::Policy sample_policy() {
   p.period = 0.2260419823497288;
   p.lower = Eigen::VectorXd::Zero(4);
   p.upper = Eigen::VectorXd::Constant(4, 0.5);
-  p.training = {1234, 56, 7, 8.5};
+  p.training = {1234, 56, 7, 8.5, 20};
   p.network = l::Mlp<double>(l::MlpConfig{{12 + 2 * 12, 8, 4}, l::Activation::relu,
                                           l::Activation::tanh, 3, 3e-3});
   return p;
@@ -77,6 +77,7 @@ BOOST_AUTO_TEST_CASE(round_trip_keeps_every_field) {
     BOOST_TEST(q.training.episodes == 56);
     BOOST_TEST(q.training.seed == 7u);
     BOOST_TEST(q.training.wall_time_s == 8.5);
+    BOOST_TEST(q.training.episode_steps == 20);
     BOOST_TEST(q.goal.has_value() == goal);
     if (goal) BOOST_TEST((*q.goal - *p.goal).norm() == 0.0);
     BOOST_TEST((q.network.parameters() - p.network.parameters()).norm() == 0.0);

@@ -65,6 +65,10 @@ std::vector<std::string> train_argv(const LearningStudySettings& s, const Learni
   return a;
 }
 
+/// The evaluation: reach episodes run as long as the policy's training episodes and do not stop
+/// at the first step within the threshold, so that the best error is the closest approach over
+/// the episode (the thesis' "best tip error", 4.4.3), on the horizon the policy was trained for
+/// (a GPS policy's T = 20 steps is 1 s; beyond it, its actions are not defined by training).
 std::vector<std::string> control_argv(const LearningStudySettings& s, const LearningStudyRow& r,
                                       const fs::path& policy, const fs::path& result) {
   std::vector<std::string> a{program_of(s), "control", s.scene_path, "--controller",
@@ -73,6 +77,13 @@ std::vector<std::string> control_argv(const LearningStudySettings& s, const Lear
   if (r.task == "reach-any")
     a.insert(a.end(), {"--targets", std::to_string(s.targets), "--seed",
                        std::to_string(s.target_seed)});
+  if (r.task != "track") {
+    const Json p = Json::parse(std::ifstream(policy));
+    const int steps = p["training"]["episode_steps"].get<int>();
+    a.insert(a.end(), {"--set", "control.stop_at_success=false", "--set",
+                       "control.max_steps=" + std::to_string(steps)});
+  }
+  // the user's overrides last: they win
   for (const auto& o : s.overrides) a.insert(a.end(), {"--set", o});
   return a;
 }

@@ -127,7 +127,8 @@ scene::Control read_control(Checker& c, const Field& f, const Field& actuators,
   scene::Control control;
   if (!c.keys(f, {"task", "targets", "trajectory", "horizon", "iterations", "model_scheme",
                   "dt_control",
-                  "threshold", "max_steps", "hold_steps", "weights", "seed", "target_count"}))
+                  "threshold", "max_steps", "hold_steps", "stop_at_success", "weights", "seed",
+                  "target_count"}))
     return control;
   const auto given = c.exactly_one(f, {"targets", "trajectory"}, false);
   if (given == "targets") control.targets = read_targets(c, Checker::child(f, "targets"));
@@ -142,6 +143,7 @@ scene::Control read_control(Checker& c, const Field& f, const Field& actuators,
   if (auto dt = c.number(c.child(f, "dt_control"), Range::positive())) control.dt_control = *dt;
   if (auto th = c.number(c.child(f, "threshold"), Range::positive())) control.threshold = *th;
   read_steps(c, f, control);
+  if (auto stop = c.boolean(c.child(f, "stop_at_success"))) control.stop_at_success = *stop;
   control.weights = read_weights(c, Checker::child(f, "weights"));
   if (auto seed = c.integer(c.child(f, "seed"), 0)) control.seed = static_cast<unsigned>(*seed);
 

@@ -67,10 +67,8 @@ scene::LearningGps read_gps(Checker& c, const Field& f) {
   g.kl_step = c.number(Checker::child(f, "kl_step"), Range::positive());
   g.min_step_mult = c.number(Checker::child(f, "min_step_mult"), Range::positive());
   g.max_step_mult = c.number(Checker::child(f, "max_step_mult"), Range::positive());
-  static constexpr std::string_view kBooleans[] = {"false", "true"};
-  if (auto k = c.choice(Checker::child(f, "sample_on_policy"), kBooleans)) g.sample_on_policy = *k == 1;
-  if (auto k = c.choice(Checker::child(f, "redraw_conditions"), kBooleans))
-    g.redraw_conditions = *k == 1;
+  g.sample_on_policy = c.boolean(Checker::child(f, "sample_on_policy"));
+  g.redraw_conditions = c.boolean(Checker::child(f, "redraw_conditions"));
   if (g.redraw_conditions.value_or(false) && !g.sample_on_policy.value_or(false))
     c.error(Checker::child(f, "redraw_conditions"), "needs sample_on_policy: true");
   g.entropy = c.number(Checker::child(f, "entropy"), Range::non_negative());

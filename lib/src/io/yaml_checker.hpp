@@ -123,6 +123,11 @@ class Checker {
                                     std::initializer_list<std::string_view> options) {
     return choice(f, std::span<const std::string_view>(options.begin(), options.size()));
   }
+  /// true or false, spelled so (YAML's yes/no/on/off are reported, not guessed).
+  std::optional<bool> boolean(const Field& f) {
+    const auto k = choice(f, {"false", "true"});
+    return k ? std::optional<bool>(*k == 1) : std::nullopt;
+  }
   /// A list of exactly `size` numbers, each in `range`.
   std::optional<Eigen::VectorXd> numbers(const Field& f, Eigen::Index size,
                                          const Range& range = Range::any());

@@ -193,6 +193,9 @@ struct Control {
   double threshold = 0.05;                ///< success: tip error below threshold * L
   int max_steps = 100;                    ///< control steps per reach or hold episode
   int hold_steps = 10;                    ///< hold: error below the threshold over the last ones
+  /// reach: the episode ends at the first step within the threshold; false: it runs max_steps,
+  /// so that min_error is the closest approach (the thesis' "best tip error", 4.4.3)
+  bool stop_at_success = true;
   ControlWeights weights;
   unsigned seed = 1;                      ///< for drawing targets
   int target_count = 10;                  ///< targets drawn when none are listed

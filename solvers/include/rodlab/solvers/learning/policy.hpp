@@ -33,6 +33,7 @@ struct PolicyTraining {
   long episodes = 0;
   std::uint64_t seed = 0;
   double wall_time_s = 0.0;
+  int episode_steps = 0;  ///< control steps of a training episode (GPS: its T; DDPG: max_steps)
 };
 
 struct Policy {

@@ -108,6 +108,8 @@ class RodEnvironment final : public TrajectoryEnvironment {
   void action_to_input(std::span<const double> action, Eigen::VectorXd& u) const;
 
   const Goal& goal() const { return goal_; }
+  /// The episode's last step: its length (reach) or the path's end (track), or the fixed length.
+  int episode_steps() const;
   int steps() const { return steps_; }
   double time() const { return steps_ * plant_.dt_control(); }
   lie::Vector3 tip() const { return plant_.tip(); }
@@ -115,8 +117,6 @@ class RodEnvironment final : public TrajectoryEnvironment {
 
  private:
   void observe(std::span<double> observation);
-  /// The episode's last step: its length (reach) or the path's end (track), or the fixed length.
-  int episode_steps() const;
   /// The goal's entries in the observation: 3, or 6 with its velocity (track).
   int goal_entries() const { return observer_.layout().goal_velocity ? 6 : 3; }
 
