@@ -14,7 +14,10 @@ bootstrap:
 test: bootstrap
 	cd $(BUILD) && ctest -LE validation --output-on-failure -j $(JOBS)
 
-validate: bootstrap
+# the command line alone: validate runs nothing else (the tests and benchmarks are make test's
+# and make bench's)
+validate:
+	@RODLAB_BUILD_DIR=$(BUILD) RODLAB_BUILD_TARGETS=rodlab ./scripts/bootstrap.sh
 	$(BUILD)/bin/rodlab validate --quick --out out/validation
 
 bench: bootstrap

@@ -2,6 +2,8 @@
 # Installs the Debian packages rodlab needs that are missing (and only those), then
 # configures and builds rodlab in Release under build/. Idempotent: a second run installs
 # nothing and rebuilds only what changed. Used by `make test`, `make validate`, `make bench`.
+# RODLAB_BUILD_TARGETS (space-separated CMake targets) builds only those (`make validate`: the
+# command line alone); unset, everything (tests and benchmarks too).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -45,4 +47,9 @@ build_dir=${RODLAB_BUILD_DIR:-build}
 werror=OFF
 if [ "${CI:-}" = "true" ]; then werror=ON; fi
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DRODLAB_WERROR=$werror >/dev/null
-cmake --build "$build_dir" -j "$(nproc)"
+read -r -a targets <<< "${RODLAB_BUILD_TARGETS:-}"
+if [ ${#targets[@]} -gt 0 ]; then
+  cmake --build "$build_dir" -j "$(nproc)" --target "${targets[@]}"
+else
+  cmake --build "$build_dir" -j "$(nproc)"
+fi

@@ -149,6 +149,7 @@ void apply_learning(const scene::Learning& s, l::EnvironmentOptions& e, l::GoalP
   set(d.noise_theta, q.noise_theta);
   set(d.noise_sigma, q.noise_sigma);
   set(d.final_layer_scale, q.final_layer_scale);
+  if (q.precision) d.precision = l::parse_precision(*q.precision);
   const scene::LearningGps& r = s.gps;
   set(p.conditions, r.conditions);
   set(p.samples_per_condition, r.samples_per_condition);

@@ -5,6 +5,8 @@
 #include <future>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <type_traits>
 
 #include "rodlab/check.hpp"
 
@@ -37,42 +39,86 @@ std::uint64_t part_seed(std::uint64_t seed, std::uint64_t part) {
 
 }  // namespace
 
-Ddpg::Ddpg(int observation_size, int action_size, const DdpgOptions& o)
-    : options_(o), n_obs_(observation_size), n_act_(action_size),
-      actor_(network(observation_size, o.actor_hidden, action_size, o.hidden, o.actor_output,
-                     part_seed(o.seed, 1), o.final_layer_scale)),
-      critic_(network(observation_size + action_size, o.critic_hidden, 1, o.hidden,
-                      Activation::identity, part_seed(o.seed, 2), o.final_layer_scale)),
-      actor_target_(actor_), critic_target_(critic_),
-      actor_adam_(actor_.parameter_count(), adam(o.actor_learning_rate)),
-      critic_adam_(critic_.parameter_count(), adam(o.critic_learning_rate)),
-      rng_(part_seed(o.seed, 3)) {
-  RODLAB_THROW_UNLESS(observation_size >= 1 && action_size >= 1,
-                      "ddpg: observation and action sizes must be >= 1");
-  RODLAB_THROW_UNLESS(o.gamma >= 0.0 && o.gamma <= 1.0 && o.tau > 0.0 && o.tau <= 1.0 &&
-                          o.batch_size >= 1 && o.buffer_capacity >= 1 && o.warmup >= 0 &&
-                          o.updates_per_step >= 0 && o.noise_theta >= 0.0 &&
-                          o.noise_sigma >= 0.0,
-                      "ddpg: gamma in [0, 1], tau in (0, 1], batch_size and buffer_capacity >= 1, "
-                      "warmup, updates_per_step and the noise not negative");
-  grad_actor_.resize(actor_.parameter_count());
-  grad_critic_.resize(critic_.parameter_count());
-  x_.resize(n_obs_);
-  y_.resize(n_act_);
+Precision parse_precision(std::string_view name) {
+  if (name == "float64") return Precision::float64;
+  if (name == "float32") return Precision::float32;
+  throw std::invalid_argument("ddpg: precision is float64 or float32 (got " + std::string(name) +
+                              ")");
 }
 
-void Ddpg::act(std::span<const double> observation, std::span<double> action) {
-  RODLAB_THROW_UNLESS(static_cast<int>(observation.size()) == n_obs_ &&
-                          static_cast<int>(action.size()) == n_act_,
-                      "ddpg: expected {} observations and {} actions", n_obs_, n_act_);
-  x_ = Eigen::Map<const Eigen::VectorXd>(observation.data(), n_obs_);
-  actor_.infer(x_, y_);
-  for (int k = 0; k < n_act_; ++k) action[static_cast<std::size_t>(k)] = std::clamp(y_[k], -1.0, 1.0);
-}
+namespace detail {
 
-void Ddpg::update(const ReplayBuffer& buffer) {
-  const int B = options_.batch_size;
-  buffer.sample(rng_, B, S_, A_, R_, S2_, T_);
+/// The four networks, their optimisers and the update's workspace, in one precision.
+class DdpgNetworks {
+ public:
+  virtual ~DdpgNetworks() = default;
+  virtual void act(const Eigen::VectorXd& observation, Eigen::VectorXd& action) = 0;
+  virtual void update(const ReplayBuffer& buffer, std::mt19937_64& rng) = 0;
+  virtual Mlp<double> actor() const = 0;
+  virtual Mlp<double> critic() const = 0;
+};
+
+}  // namespace detail
+
+namespace {
+
+template <class Scalar>
+class NetworksOf final : public detail::DdpgNetworks {
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Row = Eigen::Matrix<Scalar, 1, Eigen::Dynamic>;
+
+ public:
+  NetworksOf(int n_obs, int n_act, const DdpgOptions& o)
+      : o_(o), n_obs_(n_obs), n_act_(n_act),
+        actor_(network(n_obs, o.actor_hidden, n_act, o.hidden, o.actor_output,
+                       part_seed(o.seed, 1), o.final_layer_scale)),
+        critic_(network(n_obs + n_act, o.critic_hidden, 1, o.hidden, Activation::identity,
+                        part_seed(o.seed, 2), o.final_layer_scale)),
+        actor_target_(actor_), critic_target_(critic_),
+        actor_adam_(actor_.parameter_count(), adam(o.actor_learning_rate)),
+        critic_adam_(critic_.parameter_count(), adam(o.critic_learning_rate)),
+        grad_actor_(actor_.parameter_count()), grad_critic_(critic_.parameter_count()),
+        x_(n_obs), y_(n_act) {}
+
+  void act(const Eigen::VectorXd& observation, Eigen::VectorXd& action) override {
+    x_ = observation.cast<Scalar>();
+    actor_.infer(x_, y_);
+    action = y_.template cast<double>();
+  }
+
+  void update(const ReplayBuffer& buffer, std::mt19937_64& rng) override;
+
+  Mlp<double> actor() const override { return converted<double>(actor_); }
+  Mlp<double> critic() const override { return converted<double>(critic_); }
+
+ private:
+  DdpgOptions o_;
+  int n_obs_, n_act_;
+  Mlp<Scalar> actor_, critic_, actor_target_, critic_target_;
+  Adam<Scalar> actor_adam_, critic_adam_;
+  Vector grad_actor_, grad_critic_, x_, y_;
+  // update()'s workspace (allocated on the first update, reused)
+  MlpWorkspace<Scalar> ws_actor_, ws_critic_, ws_critic_pi_, ws_actor_target_, ws_critic_target_;
+  Matrix S_, A_, S2_, SA_, Y_, G_, dX_;
+  Row R_, T_;
+  Eigen::MatrixXd S64_, A64_, S2_64_;  // a float32 minibatch as sampled
+  Eigen::RowVectorXd R64_, T64_;
+};
+
+template <class Scalar>
+void NetworksOf<Scalar>::update(const ReplayBuffer& buffer, std::mt19937_64& rng) {
+  const int B = o_.batch_size;
+  if constexpr (std::is_same_v<Scalar, double>) {
+    buffer.sample(rng, B, S_, A_, R_, S2_, T_);
+  } else {
+    buffer.sample(rng, B, S64_, A64_, R64_, S2_64_, T64_);
+    S_ = S64_.cast<Scalar>();
+    A_ = A64_.cast<Scalar>();
+    R_ = R64_.cast<Scalar>();
+    S2_ = S2_64_.cast<Scalar>();
+    T_ = T64_.cast<Scalar>();
+  }
   // the target value y = r + gamma (1 - terminal) Q'(s', mu'(s'))  (4.38)
   const auto& A2 = actor_target_.forward(S2_, ws_actor_target_);
   SA_.resize(n_obs_ + n_act_, B);
@@ -81,12 +127,13 @@ void Ddpg::update(const ReplayBuffer& buffer) {
   const auto& Q2 = critic_target_.forward(SA_, ws_critic_target_);
   // (a terminal sample's Q' is not used at all: selected away, not multiplied by 0, so that a
   // non-finite next observation cannot leak in)
-  Y_ = R_ + options_.gamma * (T_.array() > 0.5).select(0.0, Q2.row(0).array()).matrix();
+  const Scalar gamma(o_.gamma);
+  Y_ = R_ + gamma * (T_.array() > Scalar(0.5)).select(Scalar(0), Q2.row(0).array()).matrix();
   // the critic: L_Q = 1/B sum (Q(s, a) - y)^2
   SA_.topRows(n_obs_) = S_;
   SA_.bottomRows(n_act_) = A_;
   const auto& Q = critic_.forward(SA_, ws_critic_);
-  G_ = (2.0 / B) * (Q - Y_);
+  G_ = (Scalar(2) / B) * (Q - Y_);
   grad_critic_.setZero();
   critic_.backward(ws_critic_, G_, &grad_critic_);
   critic_adam_.step(critic_.parameters(), grad_critic_);
@@ -94,15 +141,54 @@ void Ddpg::update(const ReplayBuffer& buffer) {
   const auto& mu = actor_.forward(S_, ws_actor_);
   SA_.bottomRows(n_act_) = mu;
   critic_.forward(SA_, ws_critic_pi_);
-  G_.setConstant(1, B, -1.0 / B);  // minimise -J
+  G_.setConstant(1, B, Scalar(-1) / B);  // minimise -J
   critic_.backward(ws_critic_pi_, G_, nullptr, &dX_);
   grad_actor_.setZero();
   actor_.backward(ws_actor_, dX_.bottomRows(n_act_), &grad_actor_);
   actor_adam_.step(actor_.parameters(), grad_actor_);
   // the targets
-  actor_target_.soft_update_from(actor_, options_.tau);
-  critic_target_.soft_update_from(critic_, options_.tau);
+  actor_target_.soft_update_from(actor_, Scalar(o_.tau));
+  critic_target_.soft_update_from(critic_, Scalar(o_.tau));
 }
+
+std::unique_ptr<detail::DdpgNetworks> make_networks(int n_obs, int n_act, const DdpgOptions& o) {
+  if (o.precision == Precision::float32) return std::make_unique<NetworksOf<float>>(n_obs, n_act, o);
+  return std::make_unique<NetworksOf<double>>(n_obs, n_act, o);
+}
+
+}  // namespace
+
+Ddpg::Ddpg(int observation_size, int action_size, const DdpgOptions& o)
+    : options_(o), n_obs_(observation_size), n_act_(action_size), rng_(part_seed(o.seed, 3)),
+      x_(observation_size), y_(action_size) {
+  RODLAB_THROW_UNLESS(observation_size >= 1 && action_size >= 1,
+                      "ddpg: observation and action sizes must be >= 1");
+  RODLAB_THROW_UNLESS(o.gamma >= 0.0 && o.gamma <= 1.0 && o.tau > 0.0 && o.tau <= 1.0 &&
+                          o.batch_size >= 1 && o.buffer_capacity >= 1 && o.warmup >= 0 &&
+                          o.updates_per_step >= 0 && o.noise_theta >= 0.0 &&
+                          o.noise_sigma >= 0.0,
+                      "ddpg: gamma in [0, 1], tau in (0, 1], batch_size and buffer_capacity >= 1, "
+                      "warmup, updates_per_step and the noise not negative");
+  networks_ = make_networks(observation_size, action_size, o);
+}
+
+Ddpg::~Ddpg() = default;
+Ddpg::Ddpg(Ddpg&&) noexcept = default;
+Ddpg& Ddpg::operator=(Ddpg&&) noexcept = default;
+
+Mlp<double> Ddpg::actor() const { return networks_->actor(); }
+Mlp<double> Ddpg::critic() const { return networks_->critic(); }
+
+void Ddpg::act(std::span<const double> observation, std::span<double> action) {
+  RODLAB_THROW_UNLESS(static_cast<int>(observation.size()) == n_obs_ &&
+                          static_cast<int>(action.size()) == n_act_,
+                      "ddpg: expected {} observations and {} actions", n_obs_, n_act_);
+  x_ = Eigen::Map<const Eigen::VectorXd>(observation.data(), n_obs_);
+  networks_->act(x_, y_);
+  for (int k = 0; k < n_act_; ++k) action[static_cast<std::size_t>(k)] = std::clamp(y_[k], -1.0, 1.0);
+}
+
+void Ddpg::update(const ReplayBuffer& buffer) { networks_->update(buffer, rng_); }
 
 DdpgLog Ddpg::train(LearningEnvironment& env, long samples,
                     const std::function<void(const DdpgEpisode&)>& progress) {

@@ -56,8 +56,9 @@ class LinearPlant final : public l::LearningEnvironment {
   int steps_ = 0;
 };
 
-l::DdpgOptions linear_options(std::uint64_t seed) {
+l::DdpgOptions linear_options(std::uint64_t seed, l::Precision precision = l::Precision::float64) {
   l::DdpgOptions o;
+  o.precision = precision;
   o.actor_hidden = {};  // u = tanh(w x + c): linear near 0, in [-1, 1]
   o.actor_output = l::Activation::tanh;
   o.critic_hidden = {32, 32};
@@ -96,38 +97,62 @@ double expected_cost(Policy u_of) {
 // as below). Checked: the learned policy's expected cost within 1 % of the LQR policy's
 // (measured 0.76 %: 0.8075 against 0.8014), its gain within 20 % of K (measured -0.809 against
 // 0.702) and its offset below 0.05 (-0.018).
-BOOST_AUTO_TEST_CASE(learns_the_lqr_policy_of_a_linear_plant) {
-  const double K = riccati_gain();
-  BOOST_TEST(K == 0.70209, boost::test_tools::tolerance(1e-5));
+/// DDPG in `precision` on the linear plant: the learned policy's expected cost, gain and offset.
+struct Learned {
+  double cost, gain, offset;
+};
+Learned learn_linear_plant(l::Precision precision) {
   LinearPlant plant;
-  l::Ddpg ddpg(1, 1, linear_options(1));
+  l::Ddpg ddpg(1, 1, linear_options(1, precision));
   const l::DdpgLog log = ddpg.train(plant, 20000);
   BOOST_TEST(log.samples == 20000);
-  const double w = ddpg.actor().weight(0)(0, 0), c = ddpg.actor().bias(0)[0];
-  const double lqr = expected_cost([&](double x) { return -K * x; });
+  const l::Mlp<double> actor = ddpg.actor();
+  const double w = actor.weight(0)(0, 0), c = actor.bias(0)[0];
   const double learned = expected_cost([&](double x) {
     std::vector<double> o{x}, a(1);
     ddpg.act(o, a);
     return a[0];
   });
-  BOOST_TEST_MESSAGE("learned u = tanh(" << w << " x + " << c << ") (LQR: -" << K << " x); cost "
-                                         << learned << " against " << lqr << ", " << log.updates
-                                         << " updates, " << log.wall_time_s << " s");
-  BOOST_TEST(learned < 1.01 * lqr);
-  BOOST_TEST(std::abs(-w - K) < 0.2 * K);
-  BOOST_TEST(std::abs(c) < 0.05);
+  BOOST_TEST_MESSAGE("learned u = tanh(" << w << " x + " << c << "), cost " << learned << ", "
+                                         << log.updates << " updates, " << log.wall_time_s << " s");
+  return {learned, -w, c};
+}
+
+BOOST_AUTO_TEST_CASE(learns_the_lqr_policy_of_a_linear_plant) {
+  const double K = riccati_gain();
+  BOOST_TEST(K == 0.70209, boost::test_tools::tolerance(1e-5));
+  const double lqr = expected_cost([&](double x) { return -K * x; });
+  const Learned r = learn_linear_plant(l::Precision::float64);
+  BOOST_TEST(r.cost < 1.01 * lqr);
+  BOOST_TEST(std::abs(r.gain - K) < 0.2 * K);
+  BOOST_TEST(std::abs(r.offset) < 0.05);
+}
+
+// The same in float32 (learning.ddpg.precision: float32), the same bounds: the networks' rounding
+// (1e-7 relative) is far below Adam's steps (1e-3), so the learned policy is as good (measured:
+// cost 0.8074, 0.75 % above the LQR policy's; w = -0.811, c = -0.018; 0.71 s against 2.9 s in float64).
+BOOST_AUTO_TEST_CASE(learns_the_lqr_policy_in_float32) {
+  const double K = riccati_gain();
+  const double lqr = expected_cost([&](double x) { return -K * x; });
+  const Learned r = learn_linear_plant(l::Precision::float32);
+  BOOST_TEST(r.cost < 1.01 * lqr);
+  BOOST_TEST(std::abs(r.gain - K) < 0.2 * K);
+  BOOST_TEST(std::abs(r.offset) < 0.05);
 }
 
 // The same seed trains the same networks bit for bit; another seed others.
 BOOST_AUTO_TEST_CASE(same_seed_same_training) {
-  LinearPlant plant;
-  l::Ddpg one(1, 1, linear_options(3)), two(1, 1, linear_options(3)), other(1, 1, linear_options(4));
-  one.train(plant, 3000);
-  two.train(plant, 3000);
-  other.train(plant, 3000);
-  BOOST_TEST((one.actor().parameters() - two.actor().parameters()).norm() == 0.0);
-  BOOST_TEST((one.critic().parameters() - two.critic().parameters()).norm() == 0.0);
-  BOOST_TEST((one.actor().parameters() - other.actor().parameters()).norm() > 0.0);
+  for (const auto precision : {l::Precision::float64, l::Precision::float32}) {
+    LinearPlant plant;
+    l::Ddpg one(1, 1, linear_options(3, precision)), two(1, 1, linear_options(3, precision)),
+        other(1, 1, linear_options(4, precision));
+    one.train(plant, 3000);
+    two.train(plant, 3000);
+    other.train(plant, 3000);
+    BOOST_TEST((one.actor().parameters() - two.actor().parameters()).norm() == 0.0);
+    BOOST_TEST((one.critic().parameters() - two.critic().parameters()).norm() == 0.0);
+    BOOST_TEST((one.actor().parameters() - other.actor().parameters()).norm() > 0.0);
+  }
 }
 
 // Parallel environments (two LinearPlants stepping on two threads): the same seed gives the same

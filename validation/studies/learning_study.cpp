@@ -65,10 +65,11 @@ std::vector<std::string> train_argv(const LearningStudySettings& s, const Learni
   return a;
 }
 
-/// The evaluation: reach episodes run as long as the policy's training episodes and do not stop
-/// at the first step within the threshold, so that the best error is the closest approach over
-/// the episode (the thesis' "best tip error", 4.4.3), on the horizon the policy was trained for
-/// (a GPS policy's T = 20 steps is 1 s; beyond it, its actions are not defined by training).
+/// The evaluation runs a reach episode as the policy was trained: DDPG's end at the first step
+/// within the threshold (terminal in its training), GPS's run its T steps (fixed-length
+/// trajectories; a GPS policy's actions beyond them are not defined by its training), so that
+/// its best error is the closest approach over the episode (the thesis' "best tip error",
+/// 4.4.3; training.episode_steps in the policy file).
 std::vector<std::string> control_argv(const LearningStudySettings& s, const LearningStudyRow& r,
                                       const fs::path& policy, const fs::path& result) {
   std::vector<std::string> a{program_of(s), "control", s.scene_path, "--controller",
@@ -77,7 +78,7 @@ std::vector<std::string> control_argv(const LearningStudySettings& s, const Lear
   if (r.task == "reach-any")
     a.insert(a.end(), {"--targets", std::to_string(s.targets), "--seed",
                        std::to_string(s.target_seed)});
-  if (r.task != "track") {
+  if (r.algorithm == "gps" && r.task != "track") {
     const Json p = Json::parse(std::ifstream(policy));
     const int steps = p["training"]["episode_steps"].get<int>();
     a.insert(a.end(), {"--set", "control.stop_at_success=false", "--set",

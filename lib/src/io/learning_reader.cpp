@@ -25,7 +25,7 @@ scene::LearningDdpg read_ddpg(Checker& c, const Field& f) {
   if (!c.keys(f, {"actor_hidden", "critic_hidden", "activation", "actor_learning_rate",
                   "critic_learning_rate", "gamma", "tau", "batch_size", "buffer_capacity",
                   "warmup", "updates_per_step", "noise_theta", "noise_sigma",
-                  "final_layer_scale"}))
+                  "final_layer_scale", "precision"}))
     return d;
   d.actor_hidden = read_sizes(c, Checker::child(f, "actor_hidden"));
   d.critic_hidden = read_sizes(c, Checker::child(f, "critic_hidden"));
@@ -43,6 +43,9 @@ scene::LearningDdpg read_ddpg(Checker& c, const Field& f) {
   d.noise_theta = c.number(Checker::child(f, "noise_theta"), Range::non_negative());
   d.noise_sigma = c.number(Checker::child(f, "noise_sigma"), Range::non_negative());
   d.final_layer_scale = c.number(Checker::child(f, "final_layer_scale"), Range::non_negative());
+  static constexpr std::string_view kPrecisions[] = {"float64", "float32"};
+  if (auto k = c.choice(Checker::child(f, "precision"), kPrecisions))
+    d.precision = std::string(kPrecisions[*k]);
   return d;
 }
 

@@ -209,6 +209,7 @@ struct LearningDdpg {
   std::optional<double> actor_learning_rate, critic_learning_rate, gamma, tau;
   std::optional<int> batch_size, buffer_capacity, warmup, updates_per_step;
   std::optional<double> noise_theta, noise_sigma, final_layer_scale;
+  std::optional<std::string> precision;  ///< float64 | float32 (the networks' arithmetic)
 };
 
 /// learning.gps: Guided Policy Search (solvers/learning/gps.hpp holds the defaults).

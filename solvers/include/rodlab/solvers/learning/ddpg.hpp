@@ -13,11 +13,16 @@
 // A time-limit end of an episode is not terminal: its target bootstraps (learning_environment.hpp).
 // Every random draw comes from the options' seed (network initialisation, replay sampling,
 // noise, the environments' episode seeds): the same seed gives the same training bit for bit.
+// The networks compute in float64 (the default) or float32 (`precision`): the environment, the
+// replay buffer and the exploration stay float64; a float32 run's actor converts to float64
+// exactly for the policy file.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <random>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +34,12 @@
 #include "rodlab/solvers/learning/replay_buffer.hpp"
 
 namespace rodlab::solvers::learning {
+
+/// The arithmetic of DDPG's networks and their updates.
+enum class Precision { float64, float32 };
+
+/// "float64" or "float32"; throws std::invalid_argument otherwise.
+Precision parse_precision(std::string_view name);
 
 struct DdpgOptions {
   std::vector<int> actor_hidden{64, 64};   ///< hidden layer sizes of mu
@@ -48,8 +59,15 @@ struct DdpgOptions {
   double noise_theta = 0.15;  ///< Ornstein-Uhlenbeck mean reversion per step (the paper's)
   double noise_sigma = 0.2;   ///< its scale per step (the paper's), in action units
   double final_layer_scale = 3e-3;  ///< both output layers start in +-3e-3 (the paper's)
+  /// float64, or float32: updates several times faster (docs/learning.md "DDPG"), the
+  /// networks' rounding 1e-7 instead of 1e-16 (Adam's steps are far larger)
+  Precision precision = Precision::float64;
   std::uint64_t seed = 1;
 };
+
+namespace detail {
+class DdpgNetworks;  // the networks in the options' precision (ddpg.cpp)
+}
 
 /// What a training run measured, per episode.
 struct DdpgEpisode {
@@ -71,6 +89,9 @@ class Ddpg {
  public:
   /// Throws std::invalid_argument for bad sizes or options.
   Ddpg(int observation_size, int action_size, const DdpgOptions& options);
+  ~Ddpg();
+  Ddpg(Ddpg&&) noexcept;
+  Ddpg& operator=(Ddpg&&) noexcept;
 
   /// The policy's action for an observation (no noise), each in [-1, 1] after clipping.
   void act(std::span<const double> observation, std::span<double> action);
@@ -90,21 +111,17 @@ class Ddpg {
   /// One update of critic, actor and targets from a minibatch of `buffer`.
   void update(const ReplayBuffer& buffer);
 
-  Mlp<double>& actor() { return actor_; }
-  Mlp<double>& critic() { return critic_; }
+  /// The actor mu and the critic Q, in float64 (a float32 run's converted exactly).
+  Mlp<double> actor() const;
+  Mlp<double> critic() const;
   const DdpgOptions& options() const { return options_; }
 
  private:
   DdpgOptions options_;
   int n_obs_, n_act_;
-  Mlp<double> actor_, critic_, actor_target_, critic_target_;
-  Adam<double> actor_adam_, critic_adam_;
+  std::unique_ptr<detail::DdpgNetworks> networks_;
   std::mt19937_64 rng_;
-  // update()'s workspace (allocated on the first update, reused)
-  MlpWorkspace<double> ws_actor_, ws_critic_, ws_critic_pi_, ws_actor_target_, ws_critic_target_;
-  Eigen::MatrixXd S_, A_, S2_, SA_, Y_, G_, dX_;
-  Eigen::RowVectorXd R_, T_;
-  Eigen::VectorXd grad_actor_, grad_critic_, x_, y_;
+  Eigen::VectorXd x_, y_;  // act()'s
 };
 
 }  // namespace rodlab::solvers::learning

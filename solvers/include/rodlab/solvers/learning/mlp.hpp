@@ -129,4 +129,17 @@ class Mlp {
 extern template class Mlp<double>;
 extern template class Mlp<float>;
 
+/// The same network in another scalar type: shape, activations and parameters (float to double
+/// is exact, double to float rounds).
+template <class To, class From>
+Mlp<To> converted(const Mlp<From>& network) {
+  MlpConfig config;
+  config.sizes = network.sizes();
+  config.hidden = network.hidden_activation();
+  config.output = network.output_activation();
+  Mlp<To> out(config);
+  out.parameters() = network.parameters().template cast<To>();
+  return out;
+}
+
 }  // namespace rodlab::solvers::learning
