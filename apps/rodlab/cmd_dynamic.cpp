@@ -1,10 +1,11 @@
 // rodlab dynamic SCENE [options]: time simulation.
 #include <array>
-
+#include <optional>
 
 #include "command.hpp"
 #include "common_options.hpp"
 #include "result_output.hpp"
+#include "vtk_output.hpp"
 
 namespace rodlab::cli {
 namespace {
@@ -18,17 +19,26 @@ int run(const Invocation& inv) {
   const scene::Scene scene = load_checked_scene(options);
   DynamicRun run = resolve_dynamic_run(options, scene, "dynamic");
   resolve_time_step(run, scene);
-  return deliver(solvers::dynamics::solve_dynamic(scene, run.solve), options.out);
+  std::optional<VtkOutput> vtk;
+  if (options.vtk) {
+    vtk.emplace(scene, *options.vtk);
+    run.solve.on_output = [&](double t, const solvers::dynamics::Stepper& state) {
+      vtk->add_state(t, state.centerline(), state.velocities());
+    };
+  }
+  const result::DynamicResult result = solvers::dynamics::solve_dynamic(scene, run.solve);
+  if (vtk) vtk->finish();
+  return deliver(result, options.out, options.vtk);
 }
 
 }  // namespace
 
 const Command& dynamic_command() {
   // A local static: the scheme options' help lines are made at start-up in another file.
-  static const std::array<OptionSpec, 13> options{
+  static const std::array<OptionSpec, 14> options{
       kSchemeOption, kNodesOption, kTolOption,  kDtOption,   kTEndOption,  kOutputEveryOption,
-      kOutFileOption, kSetOption,  kRtolOption, kAtolOption, kAlphaOption, kGridOption,
-      kMaxWallTimeOption};
+      kOutFileOption, kVtkOption,  kSetOption,  kRtolOption, kAtolOption,  kAlphaOption,
+      kGridOption,   kMaxWallTimeOption};
   static const Command command{
       "dynamic",
       "SCENE [options]",

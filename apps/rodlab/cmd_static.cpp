@@ -4,14 +4,15 @@
 #include "command.hpp"
 #include "common_options.hpp"
 #include "result_output.hpp"
+#include "vtk_output.hpp"
 
 namespace rodlab::cli {
 namespace {
 
 constexpr std::array<std::string_view, 1> kPositionals{"SCENE"};
-constexpr std::array<OptionSpec, 7> kOptions{kSchemeOption,  kNodesOption, kTolOption,
-                                             kTimeOption,    kOutFileOption, kSetOption,
-                                             kMaxWallTimeOption};
+constexpr std::array<OptionSpec, 8> kOptions{kSchemeOption,  kNodesOption,   kTolOption,
+                                             kTimeOption,    kOutFileOption, kVtkOption,
+                                             kSetOption,     kMaxWallTimeOption};
 
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);
@@ -19,7 +20,9 @@ int run(const Invocation& inv) {
   reader.finish();
   const scene::Scene scene = load_checked_scene(options);
   const StaticRun run = resolve_static_run(options, scene, "static");
-  return deliver(solvers::statics::solve_static(scene, run.solve), options.out);
+  const result::StaticResult result = solvers::statics::solve_static(scene, run.solve);
+  if (options.vtk) VtkOutput(scene, *options.vtk).write_state(result.centerline);
+  return deliver(result, options.out, options.vtk);
 }
 
 }  // namespace

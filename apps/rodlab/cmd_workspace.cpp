@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "rodlab/io/result_writer.hpp"
+#include "vtk_output.hpp"
 #include "rodlab/io/text_format.hpp"
 #include "rodlab/solvers/dynamics/dynamic_workspace.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
@@ -32,9 +33,10 @@ constexpr OptionSpec kDynamicOption{
 constexpr OptionSpec kHoldOption{
     "--hold", "T", "--dynamic: how long each input vector is held [s] > 0; default: the first "
                    "bending period"};
-constexpr std::array<OptionSpec, 9> kOptions{kSamplesOption, kDynamicOption, kHoldOption,
-                                             kSchemeOption,  kNodesOption,   kTolOption,
-                                             kDtOption,      kOutFileOption, kSetOption};
+constexpr std::array<OptionSpec, 10> kOptions{kSamplesOption, kDynamicOption, kHoldOption,
+                                              kSchemeOption,  kNodesOption,   kTolOption,
+                                              kDtOption,      kOutFileOption, kVtkOption,
+                                              kSetOption};
 
 /// The first bending period 2 pi / omega_1 of the cantilever (Euler-Bernoulli).
 double first_period(const scene::Scene& scene) {
@@ -79,6 +81,7 @@ int run(const Invocation& inv) {
     result = solvers::statics::sample_workspace(scene, run.solve, static_cast<int>(*samples));
   }
   if (options.out) io::write_result(*options.out, result);
+  if (options.vtk) VtkOutput(scene, *options.vtk).write_workspace(result);
   std::cout << "scene            " << result.scene << "\n"
             << "scheme           " << result.scheme << ", " << result.nodes << " nodes\n"
             << (dynamic ? "tips recorded    " : "samples          ") << result.samples.size()
@@ -92,6 +95,7 @@ int run(const Invocation& inv) {
             << io::format_number(result.bounds.eps_high) << "]\n"
             << "wall time        " << io::format_number(result.wall_time_s) << " s\n";
   if (options.out) std::cout << "result written to " << options.out->string() << '\n';
+  if (options.vtk) std::cout << "ParaView files in " << options.vtk->string() << '\n';
   return result.failed == 0 ? kSolved : kNotConverged;
 }
 

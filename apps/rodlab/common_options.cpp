@@ -93,12 +93,12 @@ std::optional<fs::path> read_out_file(OptionReader& reader) {
   return ok ? std::optional(path) : std::nullopt;
 }
 
-std::optional<fs::path> read_out_dir(OptionReader& reader) {
-  const auto text = reader.text(kOutFileOption.name);
+std::optional<fs::path> read_out_dir(OptionReader& reader, std::string_view option) {
+  const auto text = reader.text(option);
   if (!text) return std::nullopt;
   std::error_code ec;
   if (fs::exists(*text, ec) && !fs::is_directory(*text, ec)) {
-    reader.problem("--out: " + *text + " exists and is not a directory");
+    reader.problem(std::string(option) + ": " + *text + " exists and is not a directory");
     return std::nullopt;
   }
   return fs::path(*text);
@@ -117,6 +117,7 @@ SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::stri
   o.nodes = reader.integer(kNodesOption.name, solvers::min_nodes(problem));
   o.tol = reader.positive(kTolOption.name);
   o.out = read_out_file(reader);
+  o.vtk = read_out_dir(reader, kVtkOption.name);
   if (const auto dt = reader.text(kDtOption.name)) {
     if (*dt == "auto") {
       o.dt = TimeStep{};

@@ -26,6 +26,10 @@ inline constexpr OptionSpec kNodesOption{
 inline constexpr OptionSpec kTolOption{"--tol", "X", "solver tolerance > 0; default: solver.tol"};
 inline constexpr OptionSpec kOutFileOption{
     "--out", "FILE", "write the result to FILE (.json or .csv); its directory must exist"};
+inline constexpr OptionSpec kVtkOption{
+    "--vtk", "DIR",
+    "write ParaView files of the run (.vtp, and a .pvd for a time series) into DIR, created if "
+    "missing (docs/paraview.md)"};
 inline constexpr OptionSpec kSetOption{
     "--set", "KEY=VALUE", "override a scene field by its dotted path, e.g. rod.material.E=2e6",
     true};
@@ -66,6 +70,7 @@ struct SolveOptions {
   std::optional<int> nodes;
   std::optional<double> tol;
   std::optional<std::filesystem::path> out;
+  std::optional<std::filesystem::path> vtk;  ///< --vtk DIR
   std::optional<double> time;  ///< static: when the schedules are evaluated
   // dynamic only
   std::optional<TimeStep> dt;
@@ -92,8 +97,9 @@ std::optional<solvers::SchemeInfo> fitting_scheme(std::string_view name, solvers
 
 /// --out FILE: extension .json or .csv, existing directory, not a directory itself.
 std::optional<std::filesystem::path> read_out_file(OptionReader& reader);
-/// --out DIR: not an existing non-directory.
-std::optional<std::filesystem::path> read_out_dir(OptionReader& reader);
+/// --out DIR (or another directory option): not an existing non-directory.
+std::optional<std::filesystem::path> read_out_dir(OptionReader& reader,
+                                                  std::string_view option = kOutFileOption.name);
 
 /// Loads and checks the scene with the overrides (throws io::SceneError).
 scene::Scene load_checked_scene(const SolveOptions& options);

@@ -16,10 +16,12 @@ std::string status(bool converged, const std::string& reason) {
 }
 
 template <class Result>
-int deliver_impl(const Result& result, const std::optional<std::filesystem::path>& out) {
+int deliver_impl(const Result& result, const std::optional<std::filesystem::path>& out,
+                 const std::optional<std::filesystem::path>& vtk) {
   if (out) io::write_result(*out, result);
   std::cout << summarize(result);
   if (out) std::cout << "result written to " << out->string() << '\n';
+  if (vtk) std::cout << "ParaView files in " << vtk->string() << '\n';
   return result.converged ? kSolved : kNotConverged;
 }
 
@@ -58,12 +60,14 @@ std::string summarize(const result::DynamicResult& r) {
   return t.render();
 }
 
-int deliver(const result::StaticResult& result, const std::optional<std::filesystem::path>& out) {
-  return deliver_impl(result, out);
+int deliver(const result::StaticResult& result, const std::optional<std::filesystem::path>& out,
+            const std::optional<std::filesystem::path>& vtk) {
+  return deliver_impl(result, out, vtk);
 }
 
-int deliver(const result::DynamicResult& result, const std::optional<std::filesystem::path>& out) {
-  return deliver_impl(result, out);
+int deliver(const result::DynamicResult& result, const std::optional<std::filesystem::path>& out,
+            const std::optional<std::filesystem::path>& vtk) {
+  return deliver_impl(result, out, vtk);
 }
 
 }  // namespace rodlab::cli

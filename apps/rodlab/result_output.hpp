@@ -13,8 +13,11 @@ namespace rodlab::cli {
 std::string summarize(const result::StaticResult& result);
 std::string summarize(const result::DynamicResult& result);
 
-/// Writes (if `out`), prints the summary, returns kSolved or kNotConverged.
-int deliver(const result::StaticResult& result, const std::optional<std::filesystem::path>& out);
-int deliver(const result::DynamicResult& result, const std::optional<std::filesystem::path>& out);
+/// Writes (if `out`), prints the summary (and where the ParaView files went, if `vtk`), returns
+/// kSolved or kNotConverged.
+int deliver(const result::StaticResult& result, const std::optional<std::filesystem::path>& out,
+            const std::optional<std::filesystem::path>& vtk = std::nullopt);
+int deliver(const result::DynamicResult& result, const std::optional<std::filesystem::path>& out,
+            const std::optional<std::filesystem::path>& vtk = std::nullopt);
 
 }  // namespace rodlab::cli

@@ -125,6 +125,10 @@ class IdaReference final : public Stepper {
   double max_det_deviation() const override { return rod_.max_det_deviation(); }
 
   std::vector<result::CenterlineSample> centerline() const override { return rod_.centerline(); }
+  std::vector<Vector6> velocities() const override {
+    const auto eta = rod_.velocities();
+    return {eta.begin(), eta.end()};
+  }
 
   std::vector<ActuatorReading> actuator_readings() const override {
     const int m = rod_.unknown_size();

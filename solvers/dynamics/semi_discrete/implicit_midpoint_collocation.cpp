@@ -214,6 +214,10 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   Vector3 tip_position() const override { return rod_.tip_position(); }
   double max_det_deviation() const override { return rod_.max_det_deviation(); }
   std::vector<result::CenterlineSample> centerline() const override { return rod_.centerline(); }
+  std::vector<Vector6> velocities() const override {
+    const auto eta = rod_.velocities();
+    return {eta.begin(), eta.end()};
+  }
 
   std::vector<ActuatorReading> actuator_readings() const override {
     std::vector<ActuatorReading> out(m_);

@@ -132,6 +132,7 @@ class ShootingStepper final : public Stepper {
     for (int j = 0; j < n_; ++j) out[j] = {j * ds_, g_[j], xi_[j]};
     return out;
   }
+  std::vector<Vector6> velocities() const override { return eta_; }
 
   std::vector<ActuatorReading> actuator_readings() const override {
     std::vector<ActuatorReading> out(m_);

@@ -170,6 +170,7 @@ class StaggeredShootingStepper final : public Stepper {
   std::vector<result::CenterlineSample> centerline() const override {
     return staggered_centerline(g_, xi_, ds_);
   }
+  std::vector<Vector6> velocities() const override { return eta_; }
 
   std::vector<ActuatorReading> actuator_readings() const override {
     std::vector<ActuatorReading> out(m_);

@@ -234,6 +234,8 @@ class Variational final : public Stepper {
     return staggered_centerline(g_, xi_, ds_);
   }
 
+  std::vector<Vector6> velocities() const override { return eta_; }
+
  private:
   /// (3.41)-(3.42) at node j: the momentum balance with the inner wrench (lambda^j, or the tip
   /// wrench) and the outer one (lambda^(j-1)), then the new velocity. Accumulates the node's

@@ -2,6 +2,7 @@
 // One dynamic simulation: the initial state, the time loop shared by every scheme, the output
 // series, and the detection of non-convergence and instability (reported in the result, never
 // as NaN or a silent success).
+#include <functional>
 #include <string>
 
 #include "rodlab/result/dynamic_result.hpp"
@@ -31,6 +32,9 @@ struct DynamicSolveOptions {
   /// Wall-time guard [s]: the run stops, not converged, once it has taken longer (checked after
   /// every step; inside `ida`'s long steps between chunks of internal steps); 0: none.
   double max_wall_time = 0.0;
+  /// Called with the stepper at every recorded time (t = 0, every output_every-th step, the
+  /// last one, a failed step's): ParaView output (--vtk). Its own time is not in wall_time_s.
+  std::function<void(double t, const Stepper& state)> on_output;
 };
 
 /// The scheme options a scene sets (solver.alpha, solver.grid) and its initial state

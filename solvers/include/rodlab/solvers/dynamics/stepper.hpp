@@ -81,6 +81,8 @@ class Stepper {
   virtual double max_det_deviation() const = 0;
   /// Node poses and strains, base first.
   virtual std::vector<result::CenterlineSample> centerline() const = 0;
+  /// Node velocities eta = [omega; v] in the body frame, base first (centerline()'s nodes).
+  virtual std::vector<Vector6> velocities() const = 0;
   /// The actuators with unknowns (DynamicProblem::unknown_actuators()), in that order.
   virtual std::vector<ActuatorReading> actuator_readings() const { return {}; }
 
