@@ -23,7 +23,8 @@ ValidationReport run_suite(const SuiteOptions& options) {
       report.families.push_back({std::string(f.name), std::string(f.description)});
   DataSink sink;
   const auto start = std::chrono::steady_clock::now();
-  report.checks = run_checks(ValidationContext{options.scenes_dir, options.full, &sink, {}}, only);
+  report.checks = run_checks(
+      ValidationContext{options.scenes_dir, options.full, &sink, {}, options.on_family}, only);
   report.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   report.data_sets = std::move(sink.data_sets);

@@ -2,8 +2,11 @@
 #include <array>
 #include <optional>
 
+#include "rodlab/check.hpp"
+
 #include "command.hpp"
 #include "common_options.hpp"
+#include "progress_line.hpp"
 #include "result_output.hpp"
 #include "vtk_output.hpp"
 
@@ -26,7 +29,13 @@ int run(const Invocation& inv) {
       vtk->add_state(t, state.centerline(), state.velocities());
     };
   }
+  ProgressLine progress("dynamic", "steps", !options.quiet);
+  if (progress.active())
+    run.solve.on_step = [&](long done, long steps, double t, double dt) {
+      progress.update(done, steps, rodlab::format("t = {:.4g} s, dt = {:.3g} s", t, dt));
+    };
   const result::DynamicResult result = solvers::dynamics::solve_dynamic(scene, run.solve);
+  progress.finish();
   if (vtk) vtk->finish();
   return deliver(result, options.out, options.vtk);
 }
@@ -35,10 +44,10 @@ int run(const Invocation& inv) {
 
 const Command& dynamic_command() {
   // A local static: the scheme options' help lines are made at start-up in another file.
-  static const std::array<OptionSpec, 14> options{
+  static const std::array<OptionSpec, 15> options{
       kSchemeOption, kNodesOption, kTolOption,  kDtOption,   kTEndOption,  kOutputEveryOption,
       kOutFileOption, kVtkOption,  kSetOption,  kRtolOption, kAtolOption,  kAlphaOption,
-      kGridOption,   kMaxWallTimeOption};
+      kGridOption,   kMaxWallTimeOption, kQuietOption};
   static const Command command{
       "dynamic",
       "SCENE [options]",

@@ -18,6 +18,7 @@
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
+#include "progress_line.hpp"
 #include "studies/convergence.hpp"
 #include "studies/executor.hpp"
 #include "studies/processes.hpp"
@@ -43,7 +44,7 @@ constexpr OptionSpec kStudyTolOption{
     "recommend: the tip error to reach [m]; other studies: the solver tolerance "
     "(default: solver.tol)"};
 constexpr std::array<std::string_view, 2> kRefinements{"time", "joint"};
-constexpr std::array<OptionSpec, 13> kSweepOptions{
+constexpr std::array<OptionSpec, 14> kSweepOptions{
     OptionSpec{"--schemes", "A,B,...",
                "schemes to compare, comma-separated (one problem class); default: all of the problem class"},
     OptionSpec{"--nodes", "N1,N2,...",
@@ -60,7 +61,7 @@ constexpr std::array<OptionSpec, 13> kSweepOptions{
     OptionSpec{"--moduli", "E1,E2,...", "stability: Young's moduli [Pa] (default 1e4,1e6,1e8)"},
     OptionSpec{"--jobs", "N", "runs in parallel on this machine, integer >= 1 (default 1)"},
     OptionSpec{"--out", "DIR", "directory for the study's data (default out/study-KIND)"},
-    kSetOption};
+    kSetOption, kQuietOption};
 
 /// Every option of `rodlab study`: the sweep kinds', control's and learning's.
 constexpr auto kOptions = [] {
@@ -408,7 +409,10 @@ int run(const Invocation& inv) {
 
   // Everything is checked: from here on the study runs (and MPI, if launched by mpirun).
   study::Processes processes;
-  const study::Executor executor{jobs.value_or(1), &processes};
+  ProgressLine progress("study " + kind, "runs", !reader.flag(kQuietOption.name) && processes.root());
+  study::Executor executor{jobs.value_or(1), &processes, {}};
+  if (progress.active())
+    executor.progress = [&](long done, long total) { progress.update(done, total); };
   if (kind != "stability")
     return run_sweep_kind(kind, settings, executor, dir, tol, budget);
 

@@ -22,6 +22,7 @@
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
+#include "progress_line.hpp"
 
 namespace rodlab::cli {
 namespace {
@@ -48,8 +49,6 @@ constexpr OptionSpec kDtControlOption{"--dt-control", "X",
 constexpr OptionSpec kPolicyOutOption{
     "--out", "POLICY", "write the policy to POLICY (.json); default: policy.json"};
 
-/// How often the progress line is printed [s].
-constexpr double kProgressEvery = 10.0;
 /// Episodes the progress line's success rate and return average over.
 constexpr std::size_t kProgressWindow = 100;
 
@@ -60,6 +59,7 @@ struct TrainSettings {
   std::uint64_t seed = 1;
   double dt_control = 0.05;
   std::filesystem::path out = "policy.json";
+  bool quiet = false;  ///< --quiet: no progress line
 };
 
 TrainSettings read_settings(OptionReader& reader, const SolveOptions& o) {
@@ -82,30 +82,28 @@ TrainSettings read_settings(OptionReader& reader, const SolveOptions& o) {
   t.algorithm = algorithm.value_or("");
   t.task = task.value_or("");
   t.samples = samples.value_or(0);
+  t.quiet = o.quiet;
   return t;
 }
 
-/// The progress line: samples, episodes, the last episodes' mean return and success rate, and
-/// the sample rate.
+/// The progress line (progress_line.hpp): samples, episodes, the last episodes' mean return and
+/// success rate, and the sample rate.
 class Progress {
  public:
-  explicit Progress(long samples) : samples_(samples), start_(Clock::now()), last_(start_) {}
+  Progress(long samples, bool quiet) : samples_(samples), line_("train", "samples", !quiet) {}
   void operator()(const l::DdpgEpisode& e) {
     window_.push_back(e);
     if (window_.size() > kProgressWindow) window_.pop_front();
     ++episodes_;
-    const auto now = Clock::now();
-    if (std::chrono::duration<double>(now - last_).count() < kProgressEvery && e.samples < samples_)
-      return;
-    last_ = now;
+    if (!line_.active()) return;
     double returns = 0.0;
     for (const auto& w : window_) returns += w.return_sum;
-    const double seconds = std::chrono::duration<double>(now - start_).count();
-    std::cerr << "samples " << e.samples << "/" << samples_ << ", episodes " << episodes_
-              << ", mean return " << io::format_number(returns / window_.size())
-              << ", success " << io::format_number(100.0 * success_rate())
-              << " % (last " << window_.size() << "), "
-              << io::format_number(e.samples / std::max(seconds, 1e-9)) << " samples/s\n";
+    const double seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+    line_.update(e.samples, samples_,
+                 rodlab::format("episodes {}, mean return {:.4g}, success {:.3g} % (last {}), "
+                                "{:.4g} samples/s",
+                                episodes_, returns / window_.size(), 100.0 * success_rate(),
+                                window_.size(), e.samples / std::max(seconds, 1e-9)));
   }
   /// The success rate over the last episodes.
   double success_rate() const {
@@ -117,8 +115,9 @@ class Progress {
  private:
   using Clock = std::chrono::steady_clock;
   long samples_, episodes_ = 0;
-  Clock::time_point start_, last_;
+  Clock::time_point start_ = Clock::now();
   std::deque<l::DdpgEpisode> window_;
+  ProgressLine line_;
 };
 
 /// The scene's learning section over the solvers' defaults (each absent field keeps it).
@@ -194,7 +193,7 @@ Trained train_ddpg(std::span<l::LearningEnvironment* const> lanes, const l::Ddpg
                    const TrainSettings& t) {
   const l::LearningEnvironment& env = *lanes.front();
   l::Ddpg ddpg(env.observation_size(), env.action_size(), d);
-  Progress progress(t.samples);
+  Progress progress(t.samples, t.quiet);
   const l::DdpgLog log = ddpg.train(lanes, t.samples, std::ref(progress));
   Trained r;
   r.network = ddpg.actor();
@@ -209,16 +208,13 @@ Trained train_ddpg(std::span<l::LearningEnvironment* const> lanes, const l::Ddpg
   return r;
 }
 
-/// The GPS progress line, after every iteration.
-void print_gps_progress(const l::GpsIteration& it, long samples, double length) {
-  std::cerr << "samples " << it.samples << "/" << samples << ", trajectories "
-            << it.trajectories << " (" << it.failed << " failed), mean return "
-            << io::format_number(it.mean_return) << ", mean cost "
-            << io::format_number(it.mean_cost) << ", success "
-            << io::format_number(100.0 * it.success_rate) << " %, best error "
-            << io::format_number(100.0 * it.mean_min_error / length) << " % L, KL/step "
-            << io::format_number(it.mean_kl) << ", "
-            << io::format_number(it.samples / std::max(it.wall_time_s, 1e-9)) << " samples/s\n";
+/// The GPS progress line's text, after every iteration.
+std::string gps_progress(const l::GpsIteration& it, double length) {
+  return rodlab::format("trajectories {} ({} failed), mean return {:.4g}, mean cost {:.4g}, "
+                        "success {:.3g} %, best error {:.3g} % L, KL/step {:.3g}, {:.4g} samples/s",
+                        it.trajectories, it.failed, it.mean_return, it.mean_cost,
+                        100.0 * it.success_rate, 100.0 * it.mean_min_error / length, it.mean_kl,
+                        it.samples / std::max(it.wall_time_s, 1e-9));
 }
 
 Trained train_gps(std::span<l::RodEnvironment* const> envs, const l::GpsOptions& o,
@@ -229,9 +225,11 @@ Trained train_gps(std::span<l::RodEnvironment* const> envs, const l::GpsOptions&
   for (int c = 0; c < o.conditions; ++c) seeds.push_back(t.seed * 1000003ULL + c);
   l::Gps gps(env.state_size(), env.observation_size(), env.action_size(), o);
   const double L = env.length();
+  ProgressLine line("train", "samples", !t.quiet);
   const l::GpsLog log = gps.train(lanes, seeds, t.samples, [&](const l::GpsIteration& it) {
-    print_gps_progress(it, t.samples, L);
+    if (line.active()) line.update(it.samples, t.samples, gps_progress(it, L));
   });
+  line.finish();
   Trained r;
   r.network = gps.policy();
   r.samples = log.samples;
@@ -367,10 +365,10 @@ int run(const Invocation& inv) {
 }  // namespace
 
 const Command& train_command() {
-  static const std::array<OptionSpec, 13> options{
+  static const std::array<OptionSpec, 14> options{
       kAlgorithmOption, kTaskOption,  kSamplesOption,   kSeedOption, kJobsOption,
       kDtControlOption, kSchemeOption, kNodesOption,    kTolOption,  kGridOption,
-      kPolicyOutOption, kSetOption,   kMaxWallTimeOption};
+      kPolicyOutOption, kSetOption,   kMaxWallTimeOption, kQuietOption};
   static const Command command{
       "train",
       "SCENE --algorithm ddpg|gps --task reach-one|reach-any|track --samples K [options]",

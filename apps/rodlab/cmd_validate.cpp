@@ -14,6 +14,7 @@
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
+#include "progress_line.hpp"
 
 namespace rodlab::cli {
 namespace {
@@ -44,7 +45,7 @@ std::string family_names() {
 }
 
 constexpr std::string_view kDefaultOut = "out/validation";
-constexpr std::array<OptionSpec, 6> kOptions{
+constexpr std::array<OptionSpec, 7> kOptions{
     OptionSpec{"--quick", "", "the quick suite (default; at most 5 minutes on 2 cores)"},
     OptionSpec{"--full", "", "the full suite, including the slow checks"},
     OptionSpec{"--out", "DIR",
@@ -52,7 +53,7 @@ constexpr std::array<OptionSpec, 6> kOptions{
                "(default: out/validation)"},
     OptionSpec{"--scenes", "DIR", "the scenes to check (default: the source tree's scenes/)"},
     OptionSpec{"--only", "FAMILY,...", "run only these check families (default: all)"},
-    OptionSpec{"--no-figures", "", "do not run validation/make_figures.py"}};
+    OptionSpec{"--no-figures", "", "do not run validation/make_figures.py"}, kQuietOption};
 
 int run(const Invocation& inv) {
   OptionReader reader(inv.args);
@@ -85,7 +86,13 @@ int run(const Invocation& inv) {
   suite.figures = !reader.flag("--no-figures");
   suite.source_dir = RODLAB_SOURCE_DIR;
   suite.command_line = inv.command_line;
+  ProgressLine progress("validate", "families", !reader.flag(kQuietOption.name));
+  if (progress.active())
+    suite.on_family = [&](std::string_view family, int done, int total) {
+      progress.update(done, total, family);
+    };
   const validation::ValidationReport report = validation::run_suite(suite);
+  progress.finish();
 
   for (const auto& c : report.checks) {
     if (c.passed) continue;

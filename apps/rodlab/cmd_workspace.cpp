@@ -9,7 +9,9 @@
 
 #include <iostream>
 
+#include "rodlab/check.hpp"
 #include "rodlab/io/result_writer.hpp"
+#include "progress_line.hpp"
 #include "vtk_output.hpp"
 #include "rodlab/io/text_format.hpp"
 #include "rodlab/solvers/dynamics/dynamic_workspace.hpp"
@@ -33,10 +35,10 @@ constexpr OptionSpec kDynamicOption{
 constexpr OptionSpec kHoldOption{
     "--hold", "T", "--dynamic: how long each input vector is held [s] > 0; default: the first "
                    "bending period"};
-constexpr std::array<OptionSpec, 10> kOptions{kSamplesOption, kDynamicOption, kHoldOption,
+constexpr std::array<OptionSpec, 11> kOptions{kSamplesOption, kDynamicOption, kHoldOption,
                                               kSchemeOption,  kNodesOption,   kTolOption,
                                               kDtOption,      kOutFileOption, kVtkOption,
-                                              kSetOption};
+                                              kSetOption,     kQuietOption};
 
 /// The first bending period 2 pi / omega_1 of the cantilever (Euler-Bernoulli).
 double first_period(const scene::Scene& scene) {
@@ -66,6 +68,7 @@ int run(const Invocation& inv) {
     throw UsageError("the workspace samples actuator inputs, and " + options.scene_path +
                      " has no actuators");
   result::WorkspaceResult result;
+  ProgressLine progress("workspace", dynamic ? "steps" : "samples", !options.quiet);
   if (dynamic) {
     solvers::dynamics::DynamicWorkspaceOptions ws;
     ws.holds = static_cast<int>(*samples);
@@ -75,11 +78,18 @@ int run(const Invocation& inv) {
     DynamicRun run = resolve_dynamic_run(timed, scene, "workspace");
     resolve_time_step(run, scene);
     ws.solve = run.solve;  // t_end and output_every: set by the workspace from the holds
+    if (progress.active())
+      ws.solve.on_step = [&](long done, long steps, double t, double) {
+        progress.update(done, steps, rodlab::format("t = {:.4g} s", t));
+      };
     result = solvers::dynamics::sample_dynamic_workspace(scene, ws);
   } else {
     const StaticRun run = resolve_static_run(options, scene, "workspace");
-    result = solvers::statics::sample_workspace(scene, run.solve, static_cast<int>(*samples));
+    result = solvers::statics::sample_workspace(
+        scene, run.solve, static_cast<int>(*samples), 1,
+        [&](int done, int total) { progress.update(done, total); });
   }
+  progress.finish();
   if (options.out) io::write_result(*options.out, result);
   if (options.vtk) VtkOutput(scene, *options.vtk).write_workspace(result);
   std::cout << "scene            " << result.scene << "\n"

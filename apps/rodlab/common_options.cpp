@@ -118,6 +118,7 @@ SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::stri
   o.tol = reader.positive(kTolOption.name);
   o.out = read_out_file(reader);
   o.vtk = read_out_dir(reader, kVtkOption.name);
+  o.quiet = reader.flag(kQuietOption.name);
   if (const auto dt = reader.text(kDtOption.name)) {
     if (*dt == "auto") {
       o.dt = TimeStep{};

@@ -30,6 +30,8 @@ inline constexpr OptionSpec kVtkOption{
     "--vtk", "DIR",
     "write ParaView files of the run (.vtp, and a .pvd for a time series) into DIR, created if "
     "missing (docs/paraview.md)"};
+inline constexpr OptionSpec kQuietOption{
+    "--quiet", "", "no progress line on standard error (there is none unless it is a terminal)"};
 inline constexpr OptionSpec kSetOption{
     "--set", "KEY=VALUE", "override a scene field by its dotted path, e.g. rod.material.E=2e6",
     true};
@@ -71,6 +73,7 @@ struct SolveOptions {
   std::optional<double> tol;
   std::optional<std::filesystem::path> out;
   std::optional<std::filesystem::path> vtk;  ///< --vtk DIR
+  bool quiet = false;                        ///< --quiet: no progress line
   std::optional<double> time;  ///< static: when the schedules are evaluated
   // dynamic only
   std::optional<TimeStep> dt;

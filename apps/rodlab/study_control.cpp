@@ -9,6 +9,7 @@
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
+#include "progress_line.hpp"
 #include "study_support.hpp"
 #include "studies/control_study.hpp"
 
@@ -69,6 +70,7 @@ int run_control_study_kind(const Invocation& inv) {
   options.overrides = read_overrides(reader);
   study::ControlStudySettings s = read_settings(reader);
   const auto out_dir = read_out_dir(reader);
+  const bool quiet = reader.flag(kQuietOption.name);
   reader.finish();
   const scene::Scene scene = load_checked_scene(options);
   if (std::find(s.tasks.begin(), s.tasks.end(), "track") != s.tasks.end() &&
@@ -85,7 +87,13 @@ int run_control_study_kind(const Invocation& inv) {
   std::cout << "Table 4.1 study: " << study::control_columns(s).size() << " columns, "
             << s.tasks.size() << " tasks, " << s.horizons.size() << " horizons, N = " << s.nodes
             << '\n';
-  const study::ControlStudy result = study::run_control_study(s, &print_row);
+  ProgressLine progress("study control", "runs", !quiet);
+  const study::ControlStudy result = study::run_control_study(
+      s, [&](const auto& row, long done, long total) {
+        progress.finish();  // the row goes where the line was
+        print_row(row);
+        progress.update(done, total);
+      });
   study::write_control_study(result, dir);
   std::cout << '\n' << study::control_table_markdown(result) << "\nwritten: " << dir << '\n';
   if (!inv.args.has("--no-figures")) draw_study_figures(study::control_study_data(result), dir);

@@ -9,6 +9,7 @@
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
+#include "progress_line.hpp"
 #include "study_support.hpp"
 #include "studies/learning_study.hpp"
 
@@ -63,6 +64,7 @@ int run_learning_study_kind(const Invocation& inv) {
   options.overrides = read_overrides(reader);
   study::LearningStudySettings s = read_settings(reader);
   const auto out_dir = read_out_dir(reader);
+  const bool quiet = reader.flag(kQuietOption.name);
   reader.finish();
   const scene::Scene scene = load_checked_scene(options);
   if (scene.actuators.empty())
@@ -79,7 +81,13 @@ int run_learning_study_kind(const Invocation& inv) {
   std::cout << "learning study: " << s.algorithms.size() << " algorithms, " << s.tasks.size()
             << " tasks, " << s.seeds << " seeds, " << s.fractions.size()
             << " budgets each (curve points)\n";
-  const study::LearningStudy result = study::run_learning_study(s, dir, &print_row);
+  ProgressLine progress("study learning", "runs", !quiet);
+  const study::LearningStudy result = study::run_learning_study(
+      s, dir, [&](const auto& row, long done, long total) {
+        progress.finish();  // the row goes where the line was
+        print_row(row);
+        progress.update(done, total);
+      });
   study::write_learning_study(result, dir);
   std::cout << '\n' << study::learning_table_markdown(result) << "\nwritten: " << dir << '\n';
   if (!inv.args.has("--no-figures")) draw_study_figures(study::learning_study_data(result), dir);

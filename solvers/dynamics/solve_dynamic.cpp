@@ -172,6 +172,7 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
       break;
     }
     if (done % options.output_every == 0 || done == steps) record(t);
+    if (options.on_step) options.on_step(done, steps, t, dt);
   }
   out.steps = done;
   if (!failure.empty() && scheme.id == SchemeId::variational) {

@@ -84,7 +84,8 @@ bool workspace_contains(const WorkspaceBounds& b, const Vector3& p, double L, do
 }
 
 result::WorkspaceResult sample_workspace(const scene::Scene& scene_in, const StaticSolveOptions& options,
-                                         int samples, unsigned seed) {
+                                         int samples, unsigned seed,
+                                         const std::function<void(int, int)>& progress) {
   if (samples < 1) throw std::invalid_argument("samples must be >= 1");
   const auto start = std::chrono::steady_clock::now();
   scene::Scene scene = scene_in;
@@ -111,6 +112,7 @@ result::WorkspaceResult sample_workspace(const scene::Scene& scene_in, const Sta
     sample.coordinates = workspace_coordinates(sample.tip, scene.rod.length);
     if (!sample.converged) ++out.failed;
     out.samples.push_back(std::move(sample));
+    if (progress) progress(i + 1, samples);
   }
   out.bounds = fit_workspace_bounds(out.samples);
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

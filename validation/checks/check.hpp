@@ -9,6 +9,7 @@
 // table (DIR/data/NAME.csv), each with the figures drawn from it (DIR/figures/FIGURE.svg, by
 // validation/make_figures.py from the CSV and the figure spec in report.json).
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -108,6 +109,9 @@ struct ValidationContext {
   DataSink* sink = nullptr;          ///< where emit() goes; nullptr drops the data
   /// The rodlab executable the extremes family runs as child processes; empty: this program.
   std::filesystem::path program;
+  /// Called before each family runs (its name, families done, families to run) and once when
+  /// all have run (no name): progress.
+  std::function<void(std::string_view family, int done, int total)> on_family;
 
   /// Records a data set (and its figures) for the report.
   void emit(DataSet data) const;

@@ -43,8 +43,14 @@ std::span<const CheckFamily> check_families() {
 
 std::vector<Check> run_checks(const ValidationContext& context, std::span<const std::string> only) {
   std::vector<Check> all;
+  const auto selected = [&](std::string_view name) {
+    return only.empty() || std::find(only.begin(), only.end(), name) != only.end();
+  };
+  int total = 0, done = 0;
+  for (const auto& family : check_families()) total += selected(family.name) ? 1 : 0;
   for (const auto& family : check_families()) {
-    if (!only.empty() && std::find(only.begin(), only.end(), family.name) == only.end()) continue;
+    if (!selected(family.name)) continue;
+    if (context.on_family) context.on_family(family.name, done++, total);
     if (context.sink) context.sink->current_family = std::string(family.name);
     std::vector<Check> checks;
     try {
@@ -58,6 +64,7 @@ std::vector<Check> run_checks(const ValidationContext& context, std::span<const 
       all.push_back(std::move(c));
     }
   }
+  if (context.on_family) context.on_family("", done, total);
   return all;
 }
 

@@ -170,9 +170,11 @@ std::vector<ControlColumn> control_columns(const ControlStudySettings& s) {
   return out;
 }
 
-ControlStudy run_control_study(const ControlStudySettings& s,
-                               void (*progress)(const ControlStudyRow&)) {
+ControlStudy run_control_study(const ControlStudySettings& s, const ControlProgress& progress) {
   ControlStudy study{.settings = s};
+  long total = 0;  // LQR has no horizon: one run per task (0 in the table's horizon column)
+  for (const auto& column : control_columns(s))
+    total += static_cast<long>(s.tasks.size() * (column.controller == "lqr" ? 1 : s.horizons.size()));
   for (const auto& column : control_columns(s)) {
     const scene::Scene scene = column_scene(s, column);
     study.scene_name = scene.name;
@@ -183,7 +185,7 @@ ControlStudy run_control_study(const ControlStudySettings& s,
                                                                    : s.horizons;
       for (const int h : horizons) {
         study.rows.push_back(run_one(scene, s, column, task, h));
-        if (progress) progress(study.rows.back());
+        if (progress) progress(study.rows.back(), static_cast<long>(study.rows.size()), total);
       }
     }
   }

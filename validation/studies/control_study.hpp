@@ -7,6 +7,7 @@
 // 4.4-4.11 plot error and real-time ratio against H). One `run_control` per column, task and
 // horizon (LQR has no horizon: one run per task); a run over its wall-time limit is kept as
 // "timed out", never left out.
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <optional>
@@ -99,9 +100,12 @@ struct ControlStudy {
 /// The columns of the settings, in Table 4.1's order (bad names: std::invalid_argument).
 std::vector<ControlColumn> control_columns(const ControlStudySettings& settings);
 
+/// Called after each run with its row, the runs done and their total.
+using ControlProgress = std::function<void(const ControlStudyRow&, long done, long total)>;
+
 /// Runs the study; `progress` (if set) is called after every run.
-ControlStudy run_control_study(const ControlStudySettings& settings,
-                               void (*progress)(const ControlStudyRow&) = nullptr);
+ControlStudy run_control_study(const ControlStudySettings& s,
+                               const ControlProgress& progress = {});
 
 std::string control_table_csv(const ControlStudy& study);
 Json control_study_json(const ControlStudy& study);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <mutex>
 #include <thread>
 
 namespace rodlab::validation::study {
@@ -18,6 +19,8 @@ std::vector<Json> run_tasks(const std::vector<std::function<Json()>>& tasks,
 
   std::vector<Json> results(mine.size());
   std::atomic<std::size_t> next{0};
+  std::mutex progress;
+  long finished = 0;
   auto worker = [&] {
     for (std::size_t k = next++; k < mine.size(); k = next++) {
       try {
@@ -26,6 +29,10 @@ std::vector<Json> run_tasks(const std::vector<std::function<Json()>>& tasks,
         results[k] = Json{{"error", e.what()}};
       } catch (...) {
         results[k] = Json{{"error", "unknown exception"}};
+      }
+      if (executor.progress) {
+        const std::lock_guard lock(progress);
+        executor.progress(++finished, static_cast<long>(mine.size()));
       }
     }
   };

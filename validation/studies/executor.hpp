@@ -18,6 +18,8 @@ using Json = nlohmann::json;
 struct Executor {
   int jobs = 1;                          ///< threads per rank
   const Processes* processes = nullptr;  ///< nullptr: one process
+  /// Called after each of this rank's tasks (one call at a time): tasks done of this rank's.
+  std::function<void(long done, long total)> progress;
 };
 
 /// Collective across ranks. On rank 0 (or without MPI): every task's result, in task order.

@@ -159,13 +159,15 @@ long learning_budget(const std::string& algorithm, const std::string& task) {
 }
 
 LearningStudy run_learning_study(const LearningStudySettings& s, const std::string& dir,
-                                 void (*progress)(const LearningStudyRow&)) {
+                                 const LearningProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   LearningStudy study;
   study.settings = s;
   std::vector<io::Override> overrides;
   for (const auto& o : s.overrides) overrides.push_back(io::parse_override(o));
   const double length = io::load_scene(s.scene_path, overrides).rod.length;  // the errors' unit
+  const long total = static_cast<long>(s.algorithms.size() * s.tasks.size() *
+                                       s.fractions.size()) * s.seeds;
   for (const auto& a : s.algorithms)
     for (const auto& k : s.tasks)
       for (const double f : s.fractions)
@@ -176,7 +178,7 @@ LearningStudy run_learning_study(const LearningStudySettings& s, const std::stri
           r.seed = seed;
           r.samples = std::max(1L, std::lround(f * s.budget_scale * learning_budget(a, k)));
           study.rows.push_back(run_one(s, r, dir, length));
-          if (progress) progress(study.rows.back());
+          if (progress) progress(study.rows.back(), static_cast<long>(study.rows.size()), total);
         }
   study.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

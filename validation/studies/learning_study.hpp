@@ -11,6 +11,7 @@
 // A curve point is the mean and sample standard deviation over the seeds.
 #include <filesystem>
 #include <iterator>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -63,10 +64,13 @@ struct LearningStudy {
   double wall_time_s = 0.0;
 };
 
+/// Called after each run with its row, the runs done and their total.
+using LearningProgress = std::function<void(const LearningStudyRow&, long done, long total)>;
+
 /// Runs every training and evaluation, in the order algorithm, task, fraction, seed; `progress`
 /// after each. Files go to `dir` (policies/, results/, logs/).
 LearningStudy run_learning_study(const LearningStudySettings& s, const std::string& dir,
-                                 void (*progress)(const LearningStudyRow&) = nullptr);
+                                 const LearningProgress& progress = {});
 
 /// Mean and sample standard deviation over the seeds of one algorithm, task and budget.
 struct LearningPoint {

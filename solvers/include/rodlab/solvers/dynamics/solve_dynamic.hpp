@@ -35,6 +35,9 @@ struct DynamicSolveOptions {
   /// Called with the stepper at every recorded time (t = 0, every output_every-th step, the
   /// last one, a failed step's): ParaView output (--vtk). Its own time is not in wall_time_s.
   std::function<void(double t, const Stepper& state)> on_output;
+  /// Called after every step that succeeded (steps done of all, the time reached, the step):
+  /// the progress line.
+  std::function<void(long done, long steps, double t, double dt)> on_step;
 };
 
 /// The scheme options a scene sets (solver.alpha, solver.grid) and its initial state

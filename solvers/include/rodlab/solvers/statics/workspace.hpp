@@ -5,6 +5,7 @@
 // is singular (docs/statics.md): omega from atan2 (tips bent past 90 degrees), epsilon from the
 // chord length |p| = 2 sin(omega L / 2) (1 + epsilon) / omega instead of (2.123), which divides
 // by sin(omega L) and fails at omega L = pi.
+#include <functional>
 #include <random>
 #include <span>
 #include <utility>
@@ -44,8 +45,9 @@ WorkspaceBounds fit_workspace_bounds(std::span<const result::WorkspaceSample> sa
 
 /// Samples `samples` input vectors uniformly within every actuator's `limits` (std::mt19937
 /// with `seed`), solves each, fits the bounds. Throws std::invalid_argument if the scene has no
-/// actuators or an actuator has no limits.
-result::WorkspaceResult sample_workspace(const scene::Scene& scene, const StaticSolveOptions& options,
-                                         int samples, unsigned seed = 1);
+/// actuators or an actuator has no limits. `progress` (if set) is called after every sample.
+result::WorkspaceResult sample_workspace(
+    const scene::Scene& scene, const StaticSolveOptions& options, int samples, unsigned seed = 1,
+    const std::function<void(int done, int total)>& progress = {});
 
 }  // namespace rodlab::solvers::statics
