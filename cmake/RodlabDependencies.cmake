@@ -69,3 +69,16 @@ if(MPI_CXX_FOUND)
 else()
   message(STATUS "rodlab: MPI not found (install libopenmpi-dev openmpi-bin); rodlab study runs in one process")
 endif()
+
+# The Python module (python/, issue #16): pybind11 for Debian's python3, the interpreter apt's
+# python3-* packages (numpy, pytest) install into. Every library is then built position
+# independent, as a shared module that links them needs.
+if(RODLAB_BUILD_PYTHON)
+  set(RODLAB_PYTHON_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "the python3 the module is for")
+  set(PYTHON_EXECUTABLE ${RODLAB_PYTHON_EXECUTABLE})
+  set(Python_EXECUTABLE ${RODLAB_PYTHON_EXECUTABLE})
+  find_package(pybind11 2.10 CONFIG QUIET)
+  rodlab_require_found(pybind11_FOUND "pybind11 (the Python module; or -DRODLAB_BUILD_PYTHON=OFF)"
+                       pybind11-dev)
+  set(CMAKE_POSITION_INDEPENDENT_CODE ON)
+endif()

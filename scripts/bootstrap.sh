@@ -21,6 +21,7 @@ packages=(
   nlohmann-json3-dev               # result files
   python3-matplotlib python3-numpy # figures of the validation report (validation/make_figures.py)
   python3-pytest python3-vtk9      # the Python tests; reading ParaView output back (tests/io)
+  pybind11-dev python3-dev         # the Python module (python/)
   libopenmpi-dev openmpi-bin       # MPI for rodlab study across ranks (optional at build time)
 )
 # Extra packages for one target only, e.g. `make fuzz` adds clang and libclang-rt-dev.

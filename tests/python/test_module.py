@@ -1,0 +1,136 @@
+"""The Python module `rodlab` (python/rodlab_module.cpp, docs/python.md) against the command line
+it is built from:
+
+- a static and a dynamic solve give the command line's result files to the last bit (same
+  scene, same options, the same option-resolution code);
+- bad scenes raise SceneError carrying file, line, column, field and message; a bad `set`
+  leaves the scene as it was;
+- a result's arrays are views of the result's memory, not copies, and stay valid after the
+  result is gone;
+- `schemes()` is `rodlab schemes`; a Plant steps with held inputs and bends the rod toward the
+  pulled cable;
+- examples/sweep_cable_tension.py runs and matches its closed form (the cable arc) to 1e-9 m;
+- `cmake --install` puts the module on Debian python3's path.
+"""
+import gc
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import rodlab
+
+RODLAB = os.environ["RODLAB_BINARY"]
+SOURCE = os.environ["RODLAB_SOURCE_DIR"]
+SCENES = os.path.join(SOURCE, "scenes")
+
+
+def cli(*args):
+    p = subprocess.run([RODLAB, *args], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    return p.stdout
+
+
+def test_static_equals_the_command_line(tmp_path):
+    path = os.path.join(SCENES, "cable-driven.yaml")
+    out = tmp_path / "s.json"
+    cli("static", path, "--scheme", "rkmk-rk4", "--nodes", "30", "--set",
+        "actuators.1.cable.tension=0.2", "--out", str(out))
+    ref = json.loads(out.read_text())
+    scene = rodlab.Scene.load(path)
+    scene.set("actuators.1.cable.tension", 0.2)
+    r = rodlab.solve_static(scene, scheme="rkmk-rk4", nodes=30)
+    assert r.scheme == "rkmk-rk4" and r.converged and r.iterations == ref["iterations"]
+    c = r.centerline
+    assert c.positions.tolist() == [x["position"] for x in ref["centerline"]]
+    assert c.rotations.tolist() == [x["rotation"] for x in ref["centerline"]]
+    assert c.twists.tolist() == [x["twist"] for x in ref["centerline"]]
+    assert r.base_wrench.tolist() == ref["base_wrench"]["moment"] + ref["base_wrench"]["force"]
+
+
+def test_dynamic_equals_the_command_line(tmp_path):
+    path = os.path.join(SCENES, "cantilever-gravity.yaml")
+    out = tmp_path / "d.json"
+    cli("dynamic", path, "--t-end", "0.03", "--output-every", "4", "--out", str(out))
+    ref = json.loads(out.read_text())
+    d = rodlab.solve_dynamic(rodlab.Scene.load(path), t_end=0.03, output_every=4)
+    assert d.scheme == ref["scheme"] and d.dt == ref["dt"] and d.steps == ref["steps"]
+    assert d.t.tolist() == ref["series"]["t"]
+    assert d.tip_position.tolist() == ref["series"]["tip_position"]
+    for name, values in d.energy.items():
+        assert values.tolist() == ref["series"]["energy"][name]
+    assert d.final_centerline.positions.tolist() == [
+        x["position"] for x in ref["final"]["centerline"]]
+
+
+def test_bad_scenes_raise_located_errors(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(open(os.path.join(SCENES, "cable-driven.yaml")).read().replace(
+        "E: 1.0e6", "E: -1.0e6"))
+    with pytest.raises(rodlab.SceneError) as e:
+        rodlab.Scene.load(str(bad))
+    d = e.value.diagnostics[0]
+    assert d["file"] == str(bad) and d["field"] == "rod.material.E" and d["line"] > 0
+    assert d["column"] > 0 and "must be > 0" in d["message"]
+    with pytest.raises(rodlab.SceneError):
+        rodlab.Scene.from_yaml("schema: rodlab.scene/1\nrod: {length: 0}\n")
+    scene = rodlab.Scene.load(os.path.join(SCENES, "cable-driven.yaml"))
+    with pytest.raises(rodlab.SceneError) as e:
+        scene.set("rod.length", -0.1)
+    assert e.value.diagnostics[0]["file"] == "--set rod.length=-0.1"
+    assert scene.length == 0.1  # unchanged
+    with pytest.raises(ValueError):
+        rodlab.solve_static(scene, scheme="variational")  # a dynamics scheme
+
+
+def test_arrays_are_views_that_outlive_their_result():
+    scene = rodlab.Scene.load(os.path.join(SCENES, "cable-driven.yaml"))
+    r = rodlab.solve_static(scene)
+    positions, rotations = r.centerline.positions, r.centerline.rotations
+    expected = positions.copy()
+    assert not positions.flags.owndata and positions.base is not None
+    assert np.shares_memory(positions, r.centerline.positions)  # no copy per access
+    del r
+    gc.collect()
+    rodlab.solve_static(scene, nodes=40)  # new allocations that would reuse freed memory
+    assert positions.tolist() == expected.tolist()
+    assert np.allclose(rotations @ rotations.transpose(0, 2, 1), np.eye(3), atol=1e-12)
+
+
+def test_schemes_and_plant():
+    names = [s["name"] for s in rodlab.schemes()]
+    listed = cli("schemes")
+    assert all(n in listed for n in names) and "variational" in names and "chebyshev" in names
+    plant = rodlab.Plant(rodlab.Scene.load(os.path.join(SCENES, "control-cable.yaml")))
+    assert plant.tip[2] == pytest.approx(0.1)
+    plant.set_input([0.5, 0.0, 0.0, 0.0])  # pull the cable at +x
+    for _ in range(4):
+        plant.step()
+    assert plant.time == pytest.approx(0.2)
+    assert plant.tip[0] > 0.005  # bent toward the pulled cable
+    assert plant.centerline().positions.shape == (20, 3)
+
+
+def test_example_runs(tmp_path):
+    out = tmp_path / "sweep.png"
+    p = subprocess.run(["/usr/bin/python3",
+                        os.path.join(SOURCE, "examples", "sweep_cable_tension.py"), str(out)],
+                       capture_output=True, text=True, env=os.environ.copy())
+    assert p.returncode == 0, p.stderr
+    error = float(p.stdout.split("=")[1].split()[0])
+    assert error < 1e-9
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_install_puts_the_module_on_the_path(tmp_path):
+    p = subprocess.run(["cmake", "--install", os.environ["RODLAB_BUILD_DIR"]],
+                       env={**os.environ, "DESTDIR": str(tmp_path)}, capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    installed = list(tmp_path.rglob("rodlab*.so"))
+    assert len(installed) == 1
+    where = "/" + str(installed[0].parent.relative_to(tmp_path))
+    path = subprocess.run(["/usr/bin/python3", "-c", "import sys; print(sys.path)"],
+                          capture_output=True, text=True, env={}).stdout
+    assert repr(where) in path, (where, path)
