@@ -5,6 +5,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "rodlab/check.hpp"
 #include "rodlab/io/result_writer.hpp"
 #include "rodlab/io/text_format.hpp"
 #include "rodlab/io/text_table.hpp"
@@ -14,6 +15,7 @@
 #include "common_options.hpp"
 #include "errors.hpp"
 #include "exit_status.hpp"
+#include "vtk_output.hpp"
 
 namespace rodlab::cli {
 namespace {
@@ -123,21 +125,30 @@ int run(const Invocation& inv) {
     if (!inv.args.has(kDtControlOption.name)) run.control.dt_control = run.policy->dt_control;
     if (!options.nodes) run.solver.nodes = run.policy->nodes;
   }
+  std::vector<VtkOutput> vtk;  // one collection per episode: DIR/episode_<e>/rod.pvd
+  if (options.vtk)
+    run.on_state = [&](int episode, double t, const solvers::dynamics::Stepper& state) {
+      while (static_cast<int>(vtk.size()) <= episode)
+        vtk.emplace_back(scene, *options.vtk / rodlab::format("episode_{:03d}", vtk.size()));
+      vtk[episode].add_state(t, state.centerline(), state.velocities());
+    };
   const result::ControlResult r = solvers::control::run_control(scene, run);
+  for (const auto& v : vtk) v.finish();
   if (options.out) io::write_result(*options.out, r);
   std::cout << summarize(r);
   if (options.out) std::cout << "result written to " << options.out->string() << '\n';
+  if (options.vtk) std::cout << "ParaView files in " << options.vtk->string() << '\n';
   return r.converged && !r.reason ? kSolved : kNotConverged;
 }
 
 }  // namespace
 
 const Command& control_command() {
-  static const std::array<OptionSpec, 16> options{
+  static const std::array<OptionSpec, 17> options{
       kControllerOption, kTaskOption,    kHorizonOption,     kIterationsOption, kDtControlOption,
       kSchemeOption,     kModelSchemeOption, kNodesOption,   kTolOption,        kGridOption,
-      kSeedOption,       kTargetsOption, kOutFileOption,     kSetOption,        kMaxWallTimeOption,
-      kPolicyOption};
+      kSeedOption,       kTargetsOption, kOutFileOption,     kVtkOption,        kSetOption,
+      kMaxWallTimeOption, kPolicyOption};
   static const Command command{
       "control",
       "SCENE [--controller NAME] [--task reach|hold|track] [options]",

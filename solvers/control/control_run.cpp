@@ -363,6 +363,7 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
     bool reached = false;
     auto t0 = Clock::now();  // the episode's set-up counts in its first step
     if (own_model) own_model->set_state_of(plant);
+    if (o.on_state) o.on_state(e, 0.0, plant.stepper());
     if (std::string why = controller->start(model, episode.target); !why.empty()) {
       episode.reason = why;
       out.episodes.push_back(episode);
@@ -386,6 +387,7 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
         break;
       }
       record(out, e, t, d.u, plant.tip(), target_at(t), solve_time, d.iterations);
+      if (o.on_state) o.on_state(e, t, plant.stepper());
       const double error = out.series.error.back();
       below = error < threshold ? below + 1 : 0;
       reached = reached || below > 0;

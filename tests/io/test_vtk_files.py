@@ -10,6 +10,8 @@ python3-vtk9) and compared with the result file of the same run:
   result's times, each file's TimeValue is its time, each tip is the result's tip to the last
   bit, the base does not move, and the last file is the result's final centreline;
 - workspace: one point per converged sample, with its inputs;
+- control: one collection per episode, starting at the rest state, then one file per control
+  step whose tip is the result series' tip to the last bit;
 - bad input (--vtk naming a file) is refused with exit status 2 and nothing written.
 """
 import json
@@ -118,6 +120,27 @@ def test_workspace_cloud(tmp_path):
     assert cloud.GetNumberOfVerts() == len(reached) > 0
     assert points(cloud) == [tuple(s["tip"]) for s in reached]
     assert [x[0] for x in array(cloud, "input_0")] == [s["inputs"][0] for s in reached]
+
+
+def test_control_episodes(tmp_path):
+    out, vtk_dir = tmp_path / "c.json", tmp_path / "paraview"
+    run("control", os.path.join(SCENES, "control-cable.yaml"), "--controller", "lqr", "--task",
+        "reach", "--targets", "2", "--out", str(out), "--vtk", str(vtk_dir))
+    result = json.loads(out.read_text())
+    series = result["series"]
+    assert sorted(p.name for p in vtk_dir.iterdir()) == ["episode_000", "episode_001"]
+    for e in range(2):
+        entries = ET.parse(vtk_dir / f"episode_{e:03d}" / "rod.pvd").getroot()[0].findall("DataSet")
+        rods = [x for x in entries if x.get("part") == "0"]
+        rows = [k for k, i in enumerate(series["episode"]) if i == e]
+        assert len(rods) == len(rows) + 1  # the rest state, then every control step
+        assert float(rods[0].get("timestep")) == 0.0
+        first = read_vtp(vtk_dir / f"episode_{e:03d}" / rods[0].get("file"))
+        assert math.dist(points(first)[-1], (0.0, 0.0, 0.1)) < 1e-15  # straight at rest
+        for x, k in zip(rods[1:], rows):
+            assert float(x.get("timestep")) == series["t"][k]
+            rod = read_vtp(vtk_dir / f"episode_{e:03d}" / x.get("file"))
+            assert points(rod)[-1] == tuple(series["tip"][k])
 
 
 def test_bad_directory_is_refused(tmp_path):

@@ -20,6 +20,7 @@
 // A solver failure ends its episode (the episode's reason) and marks the run (converged false,
 // the first failure's reason); the other episodes still run. A target the quasi-static
 // controller cannot reach (outside the workspace) is reported with its closest tip and reason.
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -39,6 +40,9 @@ struct ControlRunOptions {
   /// `policy`: the trained policy (learning/policy.hpp) acting on the plant; its nodes,
   /// dt_control, inputs and observation scales must be the plant's.
   std::optional<learning::Policy> policy;
+  /// Called with the plant's state at every episode's start and after every control step of
+  /// a dynamic controller (episode index, the episode's time): ParaView output (--vtk).
+  std::function<void(int episode, double t, const dynamics::Stepper& state)> on_state;
 };
 
 /// Runs the task. Throws std::invalid_argument for bad options (an unknown or not yet available
