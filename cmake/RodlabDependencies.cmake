@@ -81,4 +81,7 @@ if(RODLAB_BUILD_PYTHON)
   rodlab_require_found(pybind11_FOUND "pybind11 (the Python module; or -DRODLAB_BUILD_PYTHON=OFF)"
                        pybind11-dev)
   set(CMAKE_POSITION_INDEPENDENT_CODE ON)
+  # -fPIC alone lets the compiler assume any global function may be replaced at load time, and
+  # so not inline or clone it within its own file; rodlab's libraries are never interposed.
+  add_compile_options(-fno-semantic-interposition)
 endif()
