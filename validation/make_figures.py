@@ -33,6 +33,16 @@ import math
 import os
 import sys
 
+# The look of every rodlab figure (also scripts/rodlab_plot.py's).
+STYLE = {
+    "svg.fonttype": "none",      # text stays text: small files, searchable
+    "svg.hashsalt": "rodlab",    # reproducible ids
+    "figure.figsize": (7.0, 4.4),
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "legend.fontsize": 8,
+}
+
 
 def main(argv):
     if len(argv) > 2 or (len(argv) == 2 and argv[1] in ("-h", "--help")):
@@ -55,14 +65,7 @@ def main(argv):
         return 3
 
     print(f"rodlab-figures: matplotlib {matplotlib.__version__}, numpy {np.__version__}")
-    matplotlib.rcParams.update({
-        "svg.fonttype": "none",      # text stays text: small files, searchable
-        "svg.hashsalt": "rodlab",    # reproducible ids
-        "figure.figsize": (7.0, 4.4),
-        "axes.grid": True,
-        "grid.alpha": 0.3,
-        "legend.fontsize": 8,
-    })
+    matplotlib.rcParams.update(STYLE)
     os.makedirs(os.path.join(out_dir, "figures"), exist_ok=True)
 
     failures = 0

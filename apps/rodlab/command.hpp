@@ -33,6 +33,7 @@ const Command& check_command();
 const Command& control_command();
 const Command& static_command();
 const Command& dynamic_command();
+const Command& plot_command();
 const Command& schemes_command();
 const Command& study_command();
 const Command& train_command();

@@ -81,16 +81,24 @@ std::optional<fs::path> read_out_file(OptionReader& reader) {
     reader.problem("--out: the result file must end in .json or .csv (got " + *text + ")");
     ok = false;
   }
+  ok = check_out_file_place(reader, path) && ok;
+  return ok ? std::optional(path) : std::nullopt;
+}
+
+bool check_out_file_place(OptionReader& reader, const fs::path& path, std::string_view option) {
   std::error_code ec;
   const fs::path dir = path.parent_path();
   if (!dir.empty() && !fs::is_directory(dir, ec)) {
-    reader.problem("--out: directory " + dir.string() + " does not exist (for " + *text + ")");
-    ok = false;
-  } else if (fs::is_directory(path, ec)) {
-    reader.problem("--out: " + *text + " is a directory; give a file name");
-    ok = false;
+    reader.problem(std::string(option) + ": directory " + dir.string() + " does not exist (for " +
+                   path.string() + ")");
+    return false;
   }
-  return ok ? std::optional(path) : std::nullopt;
+  if (fs::is_directory(path, ec)) {
+    reader.problem(std::string(option) + ": " + path.string() +
+                   " is a directory; give a file name");
+    return false;
+  }
+  return true;
 }
 
 std::optional<fs::path> read_out_dir(OptionReader& reader, std::string_view option) {

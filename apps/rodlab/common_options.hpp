@@ -100,6 +100,10 @@ std::optional<solvers::SchemeInfo> fitting_scheme(std::string_view name, solvers
 
 /// --out FILE: extension .json or .csv, existing directory, not a directory itself.
 std::optional<std::filesystem::path> read_out_file(OptionReader& reader);
+/// An output file's place: its directory exists and the file is not a directory. Records the
+/// problem (naming `option`) and returns false otherwise.
+bool check_out_file_place(OptionReader& reader, const std::filesystem::path& path,
+                          std::string_view option = kOutFileOption.name);
 /// --out DIR (or another directory option): not an existing non-directory.
 std::optional<std::filesystem::path> read_out_dir(OptionReader& reader,
                                                   std::string_view option = kOutFileOption.name);

@@ -19,11 +19,11 @@
 namespace rodlab::cli {
 namespace {
 
-const std::array<const Command*, 9>& command_table() {
-  static const std::array<const Command*, 9> table{
+const std::array<const Command*, 10>& command_table() {
+  static const std::array<const Command*, 10> table{
       &check_command(),  &static_command(), &dynamic_command(),  &control_command(),
       &schemes_command(), &study_command(), &train_command(), &validate_command(),
-      &workspace_command()};
+      &workspace_command(), &plot_command()};
   return table;
 }
 

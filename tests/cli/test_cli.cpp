@@ -59,7 +59,7 @@ BOOST_AUTO_TEST_CASE(help_lists_every_subcommand) {
     const Run r = box.run(args);
     BOOST_TEST(r.status == 0);
     for (const char* name :
-         {"check", "static", "dynamic", "schemes", "study", "validate", "workspace"})
+         {"check", "static", "dynamic", "schemes", "study", "validate", "workspace", "plot"})
       BOOST_TEST(contains(r.out, std::string("  ") + name + " "), args << " lists " << name);
   }
   const Run r = box.run("static --help");
@@ -88,7 +88,7 @@ BOOST_AUTO_TEST_CASE(no_arguments_is_a_usage_error) {
 BOOST_AUTO_TEST_CASE(unknown_subcommand_lists_the_valid_ones) {
   Sandbox box;
   expect_bad_input(box, "frobnicate",
-                   {"frobnicate", "check, static, dynamic, control, schemes, study, train, validate, workspace"});
+                   {"frobnicate", "check, static, dynamic, control, schemes, study, train, validate, workspace, plot"});
   expect_bad_input(box, "help frobnicate", {"frobnicate", "check, static"});
   expect_bad_input(box, quote(kScene), {"unknown subcommand", "check, static"});  // forgot `check`
   expect_bad_input(box, "--nodes 3", {"unknown option '--nodes'"});

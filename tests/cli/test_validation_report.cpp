@@ -255,6 +255,33 @@ BOOST_AUTO_TEST_CASE(figure_script_failures_are_reported) {
   BOOST_TEST(contains(html, "figures/beta_convergence.svg missing (figures failed"));
 }
 
+BOOST_AUTO_TEST_CASE(the_first_usable_interpreter_runs_the_script) {
+  // figure_pythons() may list PATH's python3 without matplotlib before Debian's with it
+  // (`rodlab plot` and `rodlab validate` both go by this): an unusable one is skipped, and
+  // nothing of it is reported once a usable one has run.
+  TempDir dir;
+  const fs::path echo = script(dir, "echo.sh", "echo \"$@\"\n");
+  std::string unavailable = "stale";
+  auto run = run_python_script({"/nonexistent/python3", "sh"}, echo, {"a b", "c"}, unavailable);
+  BOOST_TEST(unavailable.empty(), unavailable);
+  BOOST_TEST(run.exit_code == 0);
+  BOOST_TEST(run.output == "a b c\n");  // each argument quoted: "a b" stays one
+  const fs::path nompl = script(dir, "nompl.sh", "echo 'cannot import matplotlib'\nexit 3\n");
+  run = run_python_script({"sh", "/nonexistent/python3"}, nompl, {}, unavailable);
+  BOOST_TEST(contains(unavailable, "sh: cannot import matplotlib"), unavailable);
+  BOOST_TEST(contains(unavailable, "; /nonexistent/python3: /nonexistent/python3 not found"),
+             unavailable);
+  // A failure that is not about the interpreter ends the search.
+  run = run_python_script({"sh", "/nonexistent/python3"}, script(dir, "boom.sh", "exit 1\n"), {},
+                          unavailable);
+  BOOST_TEST(unavailable.empty(), unavailable);
+  BOOST_TEST(run.exit_code == 1);
+  const auto s = run_figure_script(hand_made(), std::vector<std::string>{"/nonexistent/py", "sh"},
+                                   script(dir, "fail.sh", "exit 1\n"), dir.path);
+  BOOST_TEST(s.state == "failed");
+  BOOST_TEST(contains(s.command, "sh "), s.command);
+}
+
 BOOST_AUTO_TEST_CASE(make_figures_script_draws_a_hand_made_report) {
   // The real validation/make_figures.py, when python3 with matplotlib is installed (the
   // bootstrap installs python3-matplotlib; elsewhere this case only checks the report writers).
