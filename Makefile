@@ -4,7 +4,7 @@ BUILD ?= build
 JOBS  ?= $(shell nproc)
 FUZZ_RUNS ?= 1000000
 
-.PHONY: all bootstrap test validate bench sanitize fuzz clean
+.PHONY: all bootstrap test validate bench sanitize fuzz clean readme-figure
 
 all: bootstrap
 
@@ -32,6 +32,14 @@ sanitize: bootstrap
 fuzz:
 	@RODLAB_BUILD_DIR=$(BUILD) RODLAB_EXTRA_PACKAGES="clang libclang-rt-dev" ./scripts/bootstrap.sh
 	./scripts/fuzz.sh $(FUZZ_RUNS)
+
+# The README's figure (docs/figures/readme-cantilever.png): the Table 2.1 cantilever released
+# straight under gravity, 0.5 s, drawn by `rodlab plot`.
+readme-figure:
+	@RODLAB_BUILD_DIR=$(BUILD) RODLAB_BUILD_TARGETS=rodlab ./scripts/bootstrap.sh
+	@mkdir -p out docs/figures
+	$(BUILD)/bin/rodlab dynamic scenes/cantilever-gravity.yaml --t-end 0.5 --quiet --out out/readme-cantilever.json
+	$(BUILD)/bin/rodlab plot out/readme-cantilever.json --out docs/figures/readme-cantilever.png
 
 clean:
 	rm -rf $(BUILD) build-asan build-fuzz out
