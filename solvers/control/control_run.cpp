@@ -361,9 +361,9 @@ void run_dynamic(const scene::Scene& scene, const ControlRunOptions& o, ControlR
     const std::size_t first = out.series.t.size();
     int below = 0;
     bool reached = false;
+    if (o.on_state) o.on_state(e, 0.0, plant.stepper());  // (not in the controller's time)
     auto t0 = Clock::now();  // the episode's set-up counts in its first step
     if (own_model) own_model->set_state_of(plant);
-    if (o.on_state) o.on_state(e, 0.0, plant.stepper());
     if (std::string why = controller->start(model, episode.target); !why.empty()) {
       episode.reason = why;
       out.episodes.push_back(episode);
