@@ -20,6 +20,9 @@
 #include "rodlab/solvers/control/plant.hpp"
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
+#include "studies/convergence.hpp"
+#include "studies/executor.hpp"
+#include "studies/settings.hpp"
 
 #include "common_options.hpp"
 #include "errors.hpp"
@@ -162,6 +165,52 @@ auto view(M T::*member) {
     if constexpr (M::ColsAtCompileTime != 1) shape.push_back(m.cols());
     return py::array_t<double>(shape, m.data(), self);
   };
+}
+
+/// `rodlab study convergence|work-precision` in process: study.json (rodlab.study/1) as Python
+/// objects. The problem class follows from the schemes (statics without them), as on the
+/// command line.
+py::object study(const PyScene& s, const std::string& kind,
+                 const std::optional<std::vector<std::string>>& schemes,
+                 const std::optional<std::vector<int>>& nodes,
+                 const std::optional<std::vector<double>>& dts, std::optional<double> t_end,
+                 const std::optional<std::string>& reference, std::optional<double> tol,
+                 std::optional<int> repeats, int jobs) {
+  namespace study = validation::study;
+  if (kind != "convergence" && kind != "work-precision")
+    throw py::value_error("kind: convergence or work-precision (got " + kind + ")");
+  study::Settings settings;
+  settings.scene_path = s.path.value_or(s.name);
+  for (const auto& o : s.overrides) settings.overrides.push_back(o.text);
+  settings.scene = s.scene;
+  for (const auto& name : schemes.value_or(std::vector<std::string>{})) {
+    const auto scheme = solvers::find_scheme(name);
+    if (!scheme) throw py::value_error("schemes: unknown scheme '" + name + "'");
+    if (!settings.schemes.empty() && scheme->problem != settings.problem)
+      throw py::value_error("schemes: statics and dynamics schemes mixed");
+    settings.problem = scheme->problem;
+    settings.schemes.push_back(*scheme);
+  }
+  if (settings.schemes.empty()) settings.schemes = study::schemes_of(settings.problem);
+  settings.nodes = nodes.value_or(std::vector<int>{});
+  settings.dts = dts.value_or(std::vector<double>{});
+  settings.reference = reference;
+  settings.tol = tol.value_or(s.scene.solver.tol);
+  settings.repeats = kind == "work-precision" ? repeats.value_or(5) : 1;
+  settings.command_line = "rodlab.study(" + kind + ")";
+  if (settings.problem == solvers::Problem::dynamics) {
+    const auto scene_t_end = s.scene.dynamics ? s.scene.dynamics->t_end : std::nullopt;
+    if (!t_end && !scene_t_end)
+      throw py::value_error("t_end: no run length; give t_end or set dynamics.t_end");
+    settings.t_end = t_end ? *t_end : *scene_t_end;
+  }
+  study::Json json;
+  {
+    py::gil_scoped_release unlocked;
+    const study::Sweep sweep = study::run_sweep(settings, study::Executor{jobs, nullptr, {}});
+    json = study::sweep_json(sweep, settings, kind);
+  }
+  return py::module_::import("json").attr("loads")(json.dump());
 }
 
 void bind_errors(py::module_& m) {
@@ -327,6 +376,12 @@ PYBIND11_MODULE(rodlab, m) {
         return out;
       },
       "Every scheme, as `rodlab schemes` lists them");
+  m.def("study", &study, py::arg("scene"), py::arg("kind"), py::kw_only(),
+        py::arg("schemes") = py::none(), py::arg("nodes") = py::none(),
+        py::arg("dts") = py::none(), py::arg("t_end") = py::none(),
+        py::arg("reference") = py::none(), py::arg("tol") = py::none(),
+        py::arg("repeats") = py::none(), py::arg("jobs") = 1,
+        "A convergence or work-precision study, as `rodlab study`: its study.json");
   m.def("solve_static", &solve_static, py::arg("scene"), py::kw_only(),
         py::arg("scheme") = py::none(), py::arg("nodes") = py::none(), py::arg("tol") = py::none(),
         py::arg("time") = py::none(), "Static equilibrium, as `rodlab static`");

@@ -9,6 +9,8 @@ it is built from:
   result is gone;
 - `schemes()` is `rodlab schemes`; a Plant steps with held inputs and bends the rod toward the
   pulled cable;
+- `study()` gives the command line's study.json (all but the wall times) and the schemes'
+  observed orders on the gravity cantilever (rkmk-rk4: 4, rkmk-midpoint-explicit: 2, within 0.1);
 - examples/sweep_cable_tension.py runs and matches its closed form (the cable arc) to 1e-9 m;
 - `cmake --install` puts the module on Debian python3's path.
 """
@@ -134,3 +136,23 @@ def test_install_puts_the_module_on_the_path(tmp_path):
     path = subprocess.run(["/usr/bin/python3", "-c", "import sys; print(sys.path)"],
                           capture_output=True, text=True, env={}).stdout
     assert repr(where) in path, (where, path)
+
+
+def test_study_equals_the_command_line(tmp_path):
+    path = os.path.join(SCENES, "cantilever-gravity.yaml")
+    cli("study", "convergence", path, "--schemes", "rkmk-rk4,rkmk-midpoint-explicit", "--nodes",
+        "5,9,17,33", "--out", str(tmp_path / "study"))
+    ref = json.loads((tmp_path / "study" / "study.json").read_text())
+    d = rodlab.study(rodlab.Scene.load(path), "convergence",
+                     schemes=["rkmk-rk4", "rkmk-midpoint-explicit"], nodes=[5, 9, 17, 33])
+
+    def untimed(rows):
+        return [{k: v for k, v in r.items() if not k.startswith("wall_time")} for r in rows]
+
+    assert untimed(d["rows"]) == untimed(ref["rows"])
+    assert d["orders"] == ref["orders"] and d["settings"] == ref["settings"]
+    orders = {o["scheme"]: o["observed_order"] for o in d["orders"]}
+    assert orders["rkmk-rk4"] == pytest.approx(4, abs=0.1)
+    assert orders["rkmk-midpoint-explicit"] == pytest.approx(2, abs=0.1)
+    with pytest.raises(ValueError):
+        rodlab.study(rodlab.Scene.load(path), "stability")
