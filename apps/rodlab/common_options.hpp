@@ -29,7 +29,7 @@ inline constexpr OptionSpec kOutFileOption{
 inline constexpr OptionSpec kVtkOption{
     "--vtk", "DIR",
     "write ParaView files of the run (.vtp, and a .pvd for a time series) into DIR, created if "
-    "missing (docs/paraview.md)"};
+    "missing (docs/visualisation.md)"};
 inline constexpr OptionSpec kQuietOption{
     "--quiet", "", "no progress line on standard error (there is none unless it is a terminal)"};
 inline constexpr OptionSpec kSetOption{

@@ -1,5 +1,5 @@
 #pragma once
-// --vtk DIR: ParaView files of a run (docs/paraview.md). A static state is DIR/rod.vtp (and
+// --vtk DIR: ParaView files of a run (docs/visualisation.md). A static state is DIR/rod.vtp (and
 // DIR/actuators.vtp when the scene has actuators); a time series is DIR/rod_<k>.vtp (and
 // DIR/actuators_<k>.vtp) per recorded time, k = 0, 1, ..., with DIR/rod.pvd listing them with
 // their times (part 0: the rod, part 1: the actuators), which ParaView opens as an animation. A

@@ -1,4 +1,4 @@
-"""ParaView output (`--vtk DIR`, docs/paraview.md) read back by VTK's own XML reader (Debian's
+"""ParaView output (`--vtk DIR`, docs/visualisation.md) read back by VTK's own XML reader (Debian's
 python3-vtk9) and compared with the result file of the same run:
 
 - static, the cable-driven rod (one cable, T = 0.5 N at r = 4 mm, free tip): the points are the

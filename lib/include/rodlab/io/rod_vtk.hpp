@@ -1,5 +1,5 @@
 #pragma once
-// A rod's state as VTK polydata (vtk.hpp; docs/paraview.md): what `--vtk DIR` writes.
+// A rod's state as VTK polydata (vtk.hpp; docs/visualisation.md): what `--vtk DIR` writes.
 //
 // rod_polydata: the centreline as one polyline through the nodes, base first, with per node
 //   s                 arclength [m]

@@ -2,7 +2,7 @@
 // ParaView output: VTK's XML PolyData (.vtp) and its collection file (.pvd), written as text
 // ("ascii" data arrays, full double precision), exactly the format of VTK's own
 // vtkXMLPolyDataWriter and vtkPVDReader ("VTK File Formats", VTK User's Guide 11th ed., 19.3;
-// docs/paraview.md). No VTK library is needed to write it.
+// docs/visualisation.md). No VTK library is needed to write it.
 //
 // A polydata here is a set of points with named point arrays and one polyline or none:
 //   <VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">
