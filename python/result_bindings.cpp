@@ -22,6 +22,16 @@ auto view(M T::*member) {
     return py::array_t<double>(shape, m.data(), self);
   };
 }
+/// What every result has: scheme, nodes, converged, reason, wall_time_s.
+template <class R>
+void common_properties(py::class_<R>& c) {
+  c.def_property_readonly("scheme", [](const R& r) { return r.r.scheme; })
+      .def_property_readonly("nodes", [](const R& r) { return r.r.nodes; })
+      .def_property_readonly("converged", [](const R& r) { return r.r.converged; })
+      .def_property_readonly("reason", [](const R& r) { return r.r.reason; })
+      .def_property_readonly("wall_time_s", [](const R& r) { return r.r.wall_time_s; });
+}
+
 }  // namespace
 
 Centerline::Centerline(const std::vector<result::CenterlineSample>& c)
@@ -55,29 +65,23 @@ void bind_results(py::module_& m) {
       .def_property_readonly("rotations",
                              [](py::object self) { return rotations_view(self.cast<const Centerline&>(), self); })
       .def_property_readonly("twists", view(&Centerline::twists));
-  py::class_<PyStaticResult>(m, "StaticResult")
-      .def_property_readonly("scheme", [](const PyStaticResult& r) { return r.r.scheme; })
-      .def_property_readonly("nodes", [](const PyStaticResult& r) { return r.r.nodes; })
-      .def_property_readonly("converged", [](const PyStaticResult& r) { return r.r.converged; })
-      .def_property_readonly("reason", [](const PyStaticResult& r) { return r.r.reason; })
+  py::class_<PyStaticResult> statics(m, "StaticResult");
+  common_properties(statics);
+  statics
       .def_property_readonly("iterations", [](const PyStaticResult& r) { return r.r.iterations; })
       .def_property_readonly("residual_norm",
                              [](const PyStaticResult& r) { return r.r.residual_norm; })
-      .def_property_readonly("wall_time_s", [](const PyStaticResult& r) { return r.r.wall_time_s; })
       .def_property_readonly("base_wrench",
                              [](const PyStaticResult& r) { return Eigen::VectorXd(r.r.base_wrench); })
       .def_property_readonly("centerline", [](py::object self) {
         return py::cast(&self.cast<PyStaticResult&>().centerline,
                         py::return_value_policy::reference_internal, self);
       });
-  py::class_<PyDynamicResult>(m, "DynamicResult")
-      .def_property_readonly("scheme", [](const PyDynamicResult& r) { return r.r.scheme; })
-      .def_property_readonly("nodes", [](const PyDynamicResult& r) { return r.r.nodes; })
+  py::class_<PyDynamicResult> dynamics(m, "DynamicResult");
+  common_properties(dynamics);
+  dynamics
       .def_property_readonly("dt", [](const PyDynamicResult& r) { return r.r.dt; })
       .def_property_readonly("steps", [](const PyDynamicResult& r) { return r.r.steps; })
-      .def_property_readonly("converged", [](const PyDynamicResult& r) { return r.r.converged; })
-      .def_property_readonly("reason", [](const PyDynamicResult& r) { return r.r.reason; })
-      .def_property_readonly("wall_time_s", [](const PyDynamicResult& r) { return r.r.wall_time_s; })
       .def_property_readonly("t", view(&PyDynamicResult::t))
       .def_property_readonly("tip_position", view(&PyDynamicResult::tip))
       .def_property_readonly("energy",

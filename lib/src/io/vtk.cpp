@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "rodlab/io/text_format.hpp"
+
 namespace rodlab::io {
 namespace {
 
@@ -44,21 +46,6 @@ void append_cells(std::string& out, const char* tag, const std::vector<std::vect
   fmt::format_to(std::back_inserter(out), "      </{}>\n", tag);
 }
 
-/// A name as an XML attribute value (the names here are plain, but a path in a .pvd may hold
-/// any character).
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -99,7 +86,7 @@ std::string vtp_text(const VtkPolyData& d) {
       fmt::format_to(std::back_inserter(out),
                      "      <DataArray type=\"Float64\" Name=\"{}\" NumberOfTuples=\"1\" "
                      "format=\"ascii\">",
-                     escaped(name));
+                     xml_escape(name));
       append_numbers(out, &value, 1, 1);
       out += "</DataArray>\n";
     }
@@ -110,7 +97,7 @@ std::string vtp_text(const VtkPolyData& d) {
                  "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
                  n, verts.size(), d.lines.size());
   out += "      <PointData>\n";
-  for (const auto& a : d.point_data) append_array(out, escaped(a.name), a.components, a.values);
+  for (const auto& a : d.point_data) append_array(out, xml_escape(a.name), a.components, a.values);
   out += "      </PointData>\n      <Points>\n";
   std::vector<double> xyz;
   xyz.reserve(3 * n);
@@ -131,7 +118,7 @@ std::string pvd_text(const std::vector<VtkCollectionEntry>& entries) {
   for (const auto& e : entries)
     fmt::format_to(std::back_inserter(out),
                    "    <DataSet timestep=\"{}\" group=\"\" part=\"{}\" file=\"{}\"/>\n", e.time,
-                   e.part, escaped(e.file));
+                   e.part, xml_escape(e.file));
   out += "  </Collection>\n</VTKFile>\n";
   return out;
 }

@@ -15,6 +15,8 @@ std::string format_number(double value);
 std::string format_vector(const Eigen::Ref<const Eigen::VectorXd>& v);
 /// "a, b, c".
 std::string join(std::span<const std::string> items, std::string_view separator = ", ");
+/// The text with & < > " as XML/HTML entities (attribute values and element text).
+std::string xml_escape(std::string_view text);
 /// The text quoted for a POSIX shell when it needs quoting.
 std::string shell_quote(std::string_view text);
 
