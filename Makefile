@@ -4,7 +4,7 @@ BUILD ?= build
 JOBS  ?= $(shell nproc)
 FUZZ_RUNS ?= 1000000
 
-.PHONY: all bootstrap test validate bench sanitize fuzz clean readme-figure
+.PHONY: all bootstrap test validate bench sanitize fuzz clean readme-figure paraview-figure
 
 all: bootstrap
 
@@ -40,6 +40,18 @@ readme-figure:
 	@mkdir -p out docs/figures
 	$(BUILD)/bin/rodlab dynamic scenes/cantilever-gravity.yaml --t-end 0.5 --quiet --out out/readme-cantilever.json
 	$(BUILD)/bin/rodlab plot out/readme-cantilever.json --out docs/figures/readme-cantilever.png
+
+# docs/figures/paraview-swing.png: the same cantilever's first down-swing (0.12 s) written with
+# --vtk and rendered headless by ParaView's pvpython (scripts/paraview_figure.py) under a virtual
+# X server. Needs Debian's paraview, python3-paraview and xvfb (a large install, so not in the
+# bootstrap): apt-get install paraview python3-paraview xvfb.
+paraview-figure:
+	@command -v pvpython >/dev/null && command -v xvfb-run >/dev/null || \
+	  { echo "make paraview-figure: needs pvpython and xvfb-run: apt-get install paraview python3-paraview xvfb" >&2; exit 2; }
+	@RODLAB_BUILD_DIR=$(BUILD) RODLAB_BUILD_TARGETS=rodlab ./scripts/bootstrap.sh
+	@rm -rf out/paraview-swing && mkdir -p out docs/figures
+	$(BUILD)/bin/rodlab dynamic scenes/cantilever-gravity.yaml --t-end 0.12 --nodes 20 --output-every 5 --quiet --vtk out/paraview-swing
+	xvfb-run -a -s "-screen 0 1600x1200x24" pvpython scripts/paraview_figure.py out/paraview-swing/rod.pvd docs/figures/paraview-swing.png
 
 clean:
 	rm -rf $(BUILD) build-asan build-fuzz out

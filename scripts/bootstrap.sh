@@ -20,7 +20,8 @@ packages=(
   libbenchmark-dev                 # benchmarks
   nlohmann-json3-dev               # result files
   python3-matplotlib python3-numpy # figures of the validation report (validation/make_figures.py)
-  python3-pytest python3-vtk9      # the Python tests; reading ParaView output back (tests/io)
+  python3-pytest                   # the Python tests
+  python3-vtk9\|python3-paraview   # VTK's Python reader (tests/io); either package provides it
   pybind11-dev python3-dev         # the Python module (python/)
   libopenmpi-dev openmpi-bin       # MPI for rodlab study across ranks (optional at build time)
 )
@@ -30,8 +31,16 @@ packages+=("${extra[@]}")
 
 missing=()
 if command -v dpkg-query >/dev/null 2>&1; then
-  for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+  installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }
+  for entry in "${packages[@]}"; do
+    # "a|b": any one of them will do (they conflict: python3-paraview, which make
+    # paraview-figure needs, replaces python3-vtk9); the first is installed when none is
+    IFS='|' read -r -a alternatives <<< "$entry"
+    found=no
+    for p in "${alternatives[@]}"; do
+      if installed "$p"; then found=yes; break; fi
+    done
+    [ $found = yes ] || missing+=("${alternatives[0]}")
   done
 else
   echo "bootstrap: dpkg-query not found (not Debian?); skipping package installation." >&2

@@ -239,7 +239,7 @@ def draw_dynamic(doc):
     grid = fig.add_gridspec(2, 2, width_ratios=(1.2, 1.0))
     ax = fig.add_subplot(grid[0, 0])
     for k, name in enumerate("xyz"):
-        ax.plot(t, tip[:, k], label=f"tip {name}")
+        ax.plot(t, tip[:, k], label=f"tip {name}", gid=f"tip_{name}")  # the SVG's ids
     ax.set_ylabel("tip position [m]")
     ax.legend(loc="best")
     ax.set_title("tip against time", fontsize=10)

@@ -15,6 +15,7 @@ import struct
 import subprocess
 import xml.etree.ElementTree as ET
 
+import numpy as np
 import pytest
 
 RODLAB = os.environ["RODLAB_BINARY"]
@@ -144,6 +145,65 @@ def test_svg_and_pdf(results, tmp_path):
     out = tmp_path / "dynamic.pdf"
     assert plot(results["dynamic"], "--out", out).returncode == 0
     assert out.read_bytes().startswith(b"%PDF-")
+
+
+SVG = "{http://www.w3.org/2000/svg}"
+XLINK_HREF = "{http://www.w3.org/1999/xlink}href"
+
+
+def axis_map(axes, axis):
+    """Pixel = a * value + b for one axis of a drawn matplotlib Axes, fitted through its tick
+    marks (the <use> of each xtick_k/ytick_k group) and their labels (text, svg.fonttype none;
+    U+2212 is matplotlib's minus). Returns (a, b) and the largest residual of the fit [px]."""
+    marks = []
+    for tick in axes.iter(SVG + "g"):
+        if not tick.get("id", "").startswith(axis + "tick_"):
+            continue
+        use = next(tick.iter(SVG + "use"))
+        label = "".join(next(tick.iter(SVG + "text")).itertext()).replace("\u2212", "-")
+        marks.append((float(label), float(use.get(axis))))
+    assert len(marks) >= 3, marks
+    value, pixel = (np.array(c) for c in zip(*marks))
+    (a, b), *_ = np.linalg.lstsq(np.c_[value, np.ones_like(value)], pixel, rcond=None)
+    return (a, b), np.abs(a * value + b - pixel).max()
+
+
+def path_vertices(d):
+    """The vertices of an SVG path made of M and L commands (matplotlib's polylines)."""
+    tokens = d.replace("M", " ").replace("L", " ").split()
+    return np.array(tokens, dtype=float).reshape(-1, 2)
+
+
+def test_drawn_tip_matches_the_result(results, tmp_path):
+    """The tip-against-time panel of a dynamic result, read back from the SVG: every drawn
+    vertex of the lines tip x and tip z, mapped to data by the axis ticks, is a sample (t, tip)
+    of the result's series, and the last one its final tip. Tolerance: 0.01 px in data units
+    (the SVG's coordinates have 6 decimals; the tick labels are exact to 2 digits, so the fit
+    through them is exact to its residual, asserted below 1e-3 px)."""
+    import json
+    out = tmp_path / "dynamic.svg"
+    assert plot(results["dynamic"], "--out", out).returncode == 0
+    series = json.loads(results["dynamic"].read_text())["series"]
+    t, tip = np.array(series["t"]), np.array(series["tip_position"])
+    axes = next(g for g in ET.parse(out).getroot().iter(SVG + "g")
+                if g.get("id", "").startswith("axes_")
+                and any(line.get("id") == "tip_x" for line in g.iter(SVG + "g")))
+    (ax, bx), fit_x = axis_map(axes, "x")
+    (ay, by), fit_y = axis_map(axes, "y")
+    assert fit_x < 1e-3 and fit_y < 1e-3, (fit_x, fit_y)
+    for k, name in ((0, "x"), (2, "z")):
+        group = next(g for g in axes.iter(SVG + "g") if g.get("id") == f"tip_{name}")
+        drawn = path_vertices(next(group.iter(SVG + "path")).get("d"))
+        drawn_t, drawn_tip = (drawn[:, 0] - bx) / ax, (drawn[:, 1] - by) / ay
+        tolerance_t, tolerance_tip = 0.01 / abs(ax), 0.01 / abs(ay)
+        assert len(drawn) >= 2
+        nearest = np.abs(t[None, :] - drawn_t[:, None]).argmin(axis=1)
+        assert np.abs(t[nearest] - drawn_t).max() < tolerance_t, name
+        assert np.abs(tip[nearest, k] - drawn_tip).max() < tolerance_tip, name
+        assert abs(drawn_t[-1] - t[-1]) < tolerance_t
+        assert abs(drawn_tip[-1] - tip[-1, k]) < tolerance_tip, (name, drawn_tip[-1], tip[-1, k])
+    # the rod sags across its length (gravity along -x): the drawn tip left x = 0
+    assert tip[-1, 0] < -5 * tolerance_tip
 
 
 def test_gif_animation_of_a_dynamic_result(results, tmp_path):
