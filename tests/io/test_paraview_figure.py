@@ -1,6 +1,6 @@
 """The headless ParaView rendering of a dynamic run (scripts/paraview_figure.py, `make
 paraview-figure`, docs/visualisation.md), where Debian's pvpython (python3-paraview) and
-xvfb-run (xvfb) are installed; skipped otherwise (they are not in the bootstrap: a large install).
+Xvfb (xvfb) are installed; skipped otherwise (they are not in the bootstrap: a large install).
 
 - a dynamic --vtk run of the gravity cantilever renders: exit 0, a PNG of the requested size,
   not blank (more than 2 % of its pixels differ from the white background), and the rod drawn
@@ -20,21 +20,39 @@ SOURCE = os.environ["RODLAB_SOURCE_DIR"]
 SCRIPT = os.path.join(SOURCE, "scripts", "paraview_figure.py")
 
 pytestmark = pytest.mark.skipif(
-    not (shutil.which("pvpython") and shutil.which("xvfb-run")),
-    reason="needs pvpython and xvfb-run: apt-get install paraview python3-paraview xvfb")
+    not (shutil.which("pvpython") and shutil.which("Xvfb")),
+    reason="needs pvpython and Xvfb: apt-get install paraview python3-paraview xvfb")
 
 
-def render(*args):
-    return subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1024x768x24", "pvpython",
-                           SCRIPT, *map(str, args)], capture_output=True, text=True)
+@pytest.fixture(scope="module")
+def display():
+    """One virtual X server for the module, on the display number it picks itself and reports
+    through -displayfd (two `xvfb-run -a` started close together can race for the same one)."""
+    read_end, write_end = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0",
+                               "1024x768x24", "-nolisten", "tcp"],
+                              pass_fds=(write_end,), stderr=subprocess.DEVNULL)
+    os.close(write_end)
+    with os.fdopen(read_end) as numbers:
+        number = numbers.readline().strip()
+    assert number, "Xvfb did not report a display"
+    yield ":" + number
+    server.terminate()
+    server.wait()
 
 
-def test_a_dynamic_run_renders(tmp_path):
+def render(display, *args):
+    return subprocess.run(["pvpython", SCRIPT, *map(str, args)], capture_output=True, text=True,
+                          env={**os.environ, "DISPLAY": display})
+
+
+def test_a_dynamic_run_renders(display, tmp_path):
     subprocess.run([RODLAB, "dynamic", f"{SOURCE}/scenes/cantilever-gravity.yaml", "--t-end",
                     "0.12", "--nodes", "12", "--output-every", "10", "--quiet",
                     "--vtk", tmp_path / "swing"], check=True, capture_output=True)
     out = tmp_path / "swing.png"
-    p = render(tmp_path / "swing" / "rod.pvd", out, "--snapshots", "4", "--size", "640", "480")
+    p = render(display, tmp_path / "swing" / "rod.pvd", out, "--snapshots", "4", "--size", "640",
+               "480")
     assert p.returncode == 0, p.stderr
     import matplotlib.image
     pixels = matplotlib.image.imread(out)[:, :, :3]
@@ -47,11 +65,11 @@ def test_a_dynamic_run_renders(tmp_path):
     assert rod_area.any()
 
 
-def test_a_static_file_is_refused(tmp_path):
+def test_a_static_file_is_refused(display, tmp_path):
     subprocess.run([RODLAB, "static", f"{SOURCE}/scenes/cable-driven.yaml", "--vtk",
                     tmp_path / "bent"], check=True, capture_output=True)
     out = tmp_path / "bent.png"
-    p = render(tmp_path / "bent" / "rod.vtp", out)
+    p = render(display, tmp_path / "bent" / "rod.vtp", out)
     assert p.returncode == 2, p.stderr
     assert "not a time series" in p.stderr
     assert not out.exists()
