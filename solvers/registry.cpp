@@ -57,6 +57,7 @@ std::unique_ptr<Stepper> variational(const DynamicProblem& problem, const Dynami
   dynamics::VariationalOptions options;  // its Newton solve of (3.42) keeps its own defaults,
   options.nodes = o.nodes;               // tightened further by a smaller run tolerance
   options.tol = std::min(o.tol, options.tol);
+  options.step = o.variational_step;
   return dynamics::make_variational(problem, options, initial);
 }
 

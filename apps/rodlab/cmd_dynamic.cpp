@@ -44,10 +44,10 @@ int run(const Invocation& inv) {
 
 const Command& dynamic_command() {
   // A local static: the scheme options' help lines are made at start-up in another file.
-  static const std::array<OptionSpec, 15> options{
+  static const std::array<OptionSpec, 16> options{
       kSchemeOption, kNodesOption, kTolOption,  kDtOption,   kTEndOption,  kOutputEveryOption,
       kOutFileOption, kVtkOption,  kSetOption,  kRtolOption, kAtolOption,  kAlphaOption,
-      kGridOption,   kMaxWallTimeOption, kQuietOption};
+      kGridOption,   kVariationalStepOption, kMaxWallTimeOption, kQuietOption};
   static const Command command{
       "dynamic",
       "SCENE [options]",

@@ -28,6 +28,10 @@ const std::string kGridHelp =
     "on the nodes, the thesis) or staggered (the grid of variational and ida, second order); "
     "default: solver.grid, else " +
     std::string(solvers::dynamics::shooting_grid_name(kDefaults.grid));
+const std::string kVariationalStepHelp =
+    "variational: its time rule, verlet (Stormer-Verlet, second order) or symplectic-euler (the "
+    "thesis, first order); default: solver.variational_step, else " +
+    std::string(solvers::dynamics::variational_step_name(kDefaults.variational_step));
 }  // namespace
 
 // Defined after their help lines (same translation unit: initialised in this order); other
@@ -36,6 +40,8 @@ const OptionSpec kRtolOption{"--rtol", "X", kRtolHelp};
 const OptionSpec kAtolOption{"--atol", "X", kAtolHelp};
 const OptionSpec kAlphaOption{"--alpha", "X", kAlphaHelp};
 const OptionSpec kGridOption{"--grid", "euler|staggered", kGridHelp};
+const OptionSpec kVariationalStepOption{"--variational-step", "verlet|symplectic-euler",
+                                        kVariationalStepHelp};
 
 
 std::optional<solvers::SchemeInfo> fitting_scheme(std::string_view name, Problem problem,
@@ -159,6 +165,12 @@ SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::stri
     else
       reader.problem("--grid: must be euler or staggered (got " + *grid + ")");
   }
+  if (const auto step = reader.text(kVariationalStepOption.name)) {
+    if (solvers::dynamics::variational_step_from_name(*step))
+      o.variational_step = *step;
+    else
+      reader.problem("--variational-step: must be verlet or symplectic-euler (got " + *step + ")");
+  }
   return o;
 }
 
@@ -225,6 +237,9 @@ DynamicRun resolve_dynamic_solver(const SolveOptions& options, const scene::Scen
   solvers::dynamics::apply_scene_options(scene, solve);  // then the command line over the scene
   if (options.alpha) solve.alpha = *options.alpha;
   if (options.grid) solve.grid = *solvers::dynamics::shooting_grid_from_name(*options.grid);
+  if (options.variational_step)
+    solve.variational_step =
+        *solvers::dynamics::variational_step_from_name(*options.variational_step);
   solve.max_wall_time = options.max_wall_time.value_or(0.0);
   return run;
 }

@@ -46,6 +46,7 @@ extern const OptionSpec kRtolOption;   ///< ida: rtol
 extern const OptionSpec kAtolOption;   ///< ida: atol
 extern const OptionSpec kAlphaOption;  ///< bdf-alpha: alpha
 extern const OptionSpec kGridOption;   ///< implicit-midpoint, bdf-alpha: the march's grid
+extern const OptionSpec kVariationalStepOption;  ///< variational: verlet or symplectic-euler
 
 inline constexpr OptionSpec kMaxWallTimeOption{
     "--max-wall-time", "S",
@@ -82,6 +83,8 @@ struct SolveOptions {
   std::optional<double> rtol, atol;
   std::optional<double> alpha;  ///< bdf-alpha
   std::optional<std::string> grid;  ///< implicit-midpoint, bdf-alpha: "euler" or "staggered"
+  /// variational: "verlet" or "symplectic-euler"
+  std::optional<std::string> variational_step;
   std::optional<double> max_wall_time;  ///< seconds
 };
 

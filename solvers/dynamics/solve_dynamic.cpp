@@ -89,6 +89,12 @@ void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options
     if (!grid) throw std::invalid_argument("solver.grid: must be euler or staggered");
     options.grid = *grid;
   }
+  if (scene.solver.variational_step) {
+    const auto step = variational_step_from_name(*scene.solver.variational_step);
+    if (!step)
+      throw std::invalid_argument("solver.variational_step: must be verlet or symplectic-euler");
+    options.variational_step = *step;
+  }
   if (scene.dynamics) options.initial = scene.dynamics->initial;
 }
 

@@ -12,6 +12,7 @@ Xvfb (xvfb) are installed; skipped otherwise (they are not in the bootstrap: a l
 import os
 import shutil
 import subprocess
+import time
 
 import pytest
 
@@ -42,8 +43,17 @@ def display():
 
 
 def render(display, *args):
-    return subprocess.run(["pvpython", SCRIPT, *map(str, args)], capture_output=True, text=True,
-                          env={**os.environ, "DISPLAY": display})
+    """pvpython on the script. Under the full suite's load (ctest -j 2), about one run in three
+    had pvpython's first connection refused ("bad X server connection") although Xvfb had
+    reported the display ready and kept running; a second attempt connects. Retried twice on
+    that message only: any other failure is the script's."""
+    for _ in range(3):
+        p = subprocess.run(["pvpython", SCRIPT, *map(str, args)], capture_output=True,
+                           text=True, env={**os.environ, "DISPLAY": display})
+        if "bad X server connection" not in p.stderr:
+            break
+        time.sleep(0.5)
+    return p
 
 
 def test_a_dynamic_run_renders(display, tmp_path):

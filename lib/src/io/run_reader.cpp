@@ -47,7 +47,8 @@ scene::Dynamics read_dynamics(Checker& c, const Field& f) {
 
 scene::Solver read_solver(Checker& c, const Field& f) {
   scene::Solver s;
-  if (!c.keys(f, {"scheme", "nodes", "tol", "max_iterations", "alpha", "grid"})) return s;
+  if (!c.keys(f, {"scheme", "nodes", "tol", "max_iterations", "alpha", "grid", "variational_step"}))
+    return s;
   const auto all_names = names(false);
   if (auto k = c.choice(c.child(f, "scheme"), all_names)) s.scheme = std::string(all_names[*k]);
   if (auto nodes = c.integer(c.child(f, "nodes"), 2)) s.nodes = *nodes;
@@ -58,6 +59,10 @@ scene::Solver read_solver(Checker& c, const Field& f) {
   // implicit-midpoint, bdf-alpha: the spatial grid of the shooting march (docs/dynamics.md)
   static constexpr std::string_view kGrids[] = {"euler", "staggered"};
   if (auto k = c.choice(c.child(f, "grid"), kGrids)) s.grid = std::string(kGrids[*k]);
+  // variational: its time rule (docs/dynamics.md "Second order in time")
+  static constexpr std::string_view kSteps[] = {"verlet", "symplectic-euler"};
+  if (auto k = c.choice(c.child(f, "variational_step"), kSteps))
+    s.variational_step = std::string(kSteps[*k]);
   return s;
 }
 

@@ -9,6 +9,16 @@ std::unique_ptr<Stepper> make_actuated_variational(const DynamicProblem& problem
                                                    const VariationalOptions& options,
                                                    const RestState& initial);
 
+std::string_view variational_step_name(VariationalStep step) {
+  return step == VariationalStep::verlet ? "verlet" : "symplectic-euler";
+}
+
+std::optional<VariationalStep> variational_step_from_name(std::string_view name) {
+  if (name == "verlet") return VariationalStep::verlet;
+  if (name == "symplectic-euler") return VariationalStep::symplectic_euler;
+  return std::nullopt;
+}
+
 std::unique_ptr<Stepper> make_variational(const DynamicProblem& problem,
                                           const VariationalOptions& options,
                                           const RestState& initial) {

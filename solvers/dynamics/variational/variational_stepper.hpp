@@ -63,6 +63,20 @@ class Variational final : public Stepper {
     }
     eta_.assign(n_, Vector6::Zero());
     mu_.assign(n_, Vector6::Zero());
+    // Muscles and length control keep the symplectic-Euler start (their forces and length
+    // multipliers at the initial state are not set up for a half kick; docs/dynamics.md).
+    started_ = options.step == VariationalStep::symplectic_euler || kActuated;
+    // Verlet's damping at the kick times (correct_damping): only scenes with viscosity or drag
+    // pay for it, and not those with muscles or length control (first order there).
+    const bool viscous = (problem.model().V_diag().array() != 0.0).any();
+    trapezoidal_damping_ = options.step == VariationalStep::verlet && !kActuated &&
+                           (viscous || problem.has_drag());
+    if (trapezoidal_damping_) {
+      x_.assign(n_ - 1, Vector6::Zero());
+      ef_.assign(n_ - 1, small::EF{});
+      rate_.assign(n_ - 1, Vector6::Zero());
+      eta_old_.assign(n_, Vector6::Zero());
+    }
     const Vector6 M = problem.model().M_diag();
     legendre_ = {M, M.cwiseInverse(), options.tol, options.max_iterations};
     entries_ = problem.entry_nodes(n_);
@@ -74,6 +88,10 @@ class Variational final : public Stepper {
   }
 
   StepStatus step(double t, double dt) override {
+    if (!started_) {
+      if (StepStatus kicked = half_kick(t, dt); !kicked.ok) return kicked;
+      started_ = true;
+    }
     const double t1 = t + dt;
     const Vector6& V = P_.model().V_diag();
     // A scene pays only for the loads it has: the distributed wrench and drag are skipped when
@@ -136,14 +154,16 @@ class Variational final : public Stepper {
       }
       const Vector6 lambda = small::dexp_inv_transpose_apply(x, sigma, k);
       dissipated += ds_ * xi_dot.dot(V.cwiseProduct(xi_dot));
-      if (j > 0 && !node(j, t1, dt, E, lambda, lambda_prev, applied, drag, dissipated, work, F))
+      if (trapezoidal_damping_) x_[j] = x, ef_[j] = k, rate_[j] = xi_dot;
+      if (j > 0 &&
+          !node(j, t1, dt, dt, E, lambda, lambda_prev, applied, drag, dissipated, work, F))
         return diverged(j, t1, dt);
       lambda_prev = lambda;
       E = E_next;
     }
     const int tip = n_ - 1;
-    if (!node(tip, t1, dt, E, P_.tip_load(g_[tip].rotation(), t1), lambda_prev, applied, drag,
-              dissipated, work, F))
+    if (!node(tip, t1, dt, dt, E, P_.tip_load(g_[tip].rotation(), t1), lambda_prev, applied,
+              drag, dissipated, work, F))
       return diverged(tip, t1, dt);
     // A clamped tip node is held: its pose is the clamp's and eta = mu = 0 (so the last
     // segment's E^(N-1) above is the identity); the clamp's reaction, lambda^(N-2) carried to the
@@ -153,6 +173,13 @@ class Variational final : public Stepper {
     if (clamped_) {
       mu_[tip].setZero();
       eta_[tip].setZero();
+    }
+    if (trapezoidal_damping_) {
+      // A Kirchhoff rod's predicted velocities are those on the constraint (its forces carry
+      // the load: without them the predicted rates are wrong at O(1)); enforced again below.
+      if (constraint_ && !constraint_->enforce(dt, G_, xi_, mu_, eta_))
+        return constraint_failure(t1, dt);
+      if (const int j = correct_damping(dt, drag, dissipated); j >= 0) return diverged(j, t1, dt);
     }
     if constexpr (kActuated) {
       double power = 0.0;
@@ -185,6 +212,7 @@ class Variational final : public Stepper {
       ledger_ = o.ledger_;
       kinetic_old_ = o.kinetic_old_;
       dt_last_ = o.dt_last_;
+      started_ = o.started_;
       if (constraint_) *constraint_ = *o.constraint_;
     }
   }
@@ -238,9 +266,10 @@ class Variational final : public Stepper {
 
  private:
   /// (3.41)-(3.42) at node j: the momentum balance with the inner wrench (lambda^j, or the tip
-  /// wrench) and the outer one (lambda^(j-1)), then the new velocity. Accumulates the node's
-  /// kinetic energy (old velocity), drag dissipation and external power.
-  bool node(int j, double t1, double dt, const SE3& E, const Vector6& inner,
+  /// wrench) and the outer one (lambda^(j-1)), its impulse over `kick` (dt in a step, dt / 2
+  /// in the half kick), then the velocity over the next step of length dt. Accumulates the
+  /// node's kinetic energy (old velocity), drag dissipation and external power.
+  bool node(int j, double t1, double dt, double kick, const SE3& E, const Vector6& inner,
             const Vector6& lambda_prev, bool applied, bool drag, double& dissipated,
             double& work, const DynamicProblem::Forces* F) {
     const bool tip = j == n_ - 1;
@@ -286,9 +315,95 @@ class Variational final : public Stepper {
       work += entry.dot(eta_old);
     }
     const Vector6 mu_old = mu_[j];
-    mu_[j] = E.coAd_apply(mu_old) + (dt / w) * force;
+    if (trapezoidal_damping_) eta_old_[j] = eta_old;
+    mu_[j] = E.coAd_apply(mu_old) + (kick / w) * force;
     if constexpr (kActuated) return act_->solve_velocity(j, dt, mu_[j], mu_old, eta_[j]);
     return legendre_.solve(dt, mu_[j], mu_old, eta_[j]);  // (3.42)
+  }
+
+  /// Störmer-Verlet's first half kick (VariationalStep::verlet; docs/dynamics.md "Second order
+  /// in time"): the velocity over the first step gets half a step's impulse at the initial
+  /// configuration, nu_(1/2) = nu_0 + (dt / 2) F(g_0, t) per node, so that the velocities are
+  /// those of the half steps and the poses second order. The strain rate in the stress is the
+  /// one over the first step at the current velocities (zero from rest). No energy is booked:
+  /// nothing moves.
+  StepStatus half_kick(double t, double dt) {
+    const bool applied = (P_.applied_load(SO3(), t).array() != 0.0).any();
+    double kinetic = kinetic_old_, dissipated = 0.0, work = 0.0;  // discarded
+    Vector6 lambda_prev = Vector6::Zero();
+    SE3 E_j = SE3::identity();
+    for (int j = 0; j + 1 < n_; ++j) {
+      const SE3 E_next = small::exp(dt * eta_[j + 1]);
+      small::EF k;
+      const Vector6 x = small::log(G_[j], k);
+      const Vector6 xi = x / ds_;
+      const Vector6 xi_dot = (small::log(E_j.inverse() * G_[j] * E_next) / ds_ - xi) / dt;
+      const double s_mid = (j + 0.5) * ds_;
+      const Vector6 sigma = kirchhoff_ ? kirchhoff_stress(xi, xi_dot, s_mid, t)
+                                       : P_.internal_wrench(xi, xi_dot, s_mid, t);
+      const Vector6 lambda = small::dexp_inv_transpose_apply(x, sigma, k);
+      if (j > 0 && !node(j, t, dt, 0.5 * dt, SE3::identity(), lambda, lambda_prev, applied,
+                         P_.has_drag(), dissipated, work, nullptr))
+        return diverged(j, t, dt);
+      lambda_prev = lambda;
+      E_j = E_next;
+    }
+    const int tip = n_ - 1;
+    if (!node(tip, t, dt, 0.5 * dt, SE3::identity(), P_.tip_load(g_[tip].rotation(), t),
+              lambda_prev, applied, P_.has_drag(), dissipated, work, nullptr))
+      return diverged(tip, t, dt);
+    if (clamped_) {
+      mu_[tip].setZero();
+      eta_[tip].setZero();
+    }
+    kinetic_old_ = kinetic;
+    if (constraint_ && !constraint_->enforce(dt, G_, xi_, mu_, eta_))
+      return constraint_failure(t, dt);
+    return {};
+  }
+
+  /// Verlet with damping: the kick at t1 needs the viscous stress and the drag at t1, that is at
+  /// the mean of the rates over the steps before and after t1 (trapezoidal, second order). The
+  /// main pass used the rate before t1 (rate_, eta_old_); the velocities it solved predict the
+  /// rates after. This pass adds half their difference to every node's impulse and solves the
+  /// velocities again (Heun's predictor-corrector for the damping; stable for dt (tau omega^2
+  /// + c) <= 2 and omega dt < 2, where the lagged form needs omega^2 dt^2 + 2 dt (tau omega^2 +
+  /// c) < 4: docs/dynamics.md "Second order in time"). The dissipation booked by the main pass
+  /// is replaced by the mean rates'. Returns -1, or the node whose (3.42) diverged.
+  int correct_damping(double dt, bool drag, double& dissipated) {
+    const Vector6& V = P_.model().V_diag();
+    SE3 E = SE3::identity();  // E^j at the predicted velocities; the base does not move
+    Vector6 lambda_prev = Vector6::Zero();
+    for (int j = 0; j < n_; ++j) {
+      Vector6 lambda = Vector6::Zero();  // the tip's inner wrench: none
+      SE3 E_next;
+      if (j + 1 < n_) {
+        E_next = small::exp(dt * eta_[j + 1]);
+        const Vector6 rate_after =
+            (small::log(E.inverse() * G_[j] * E_next) - x_[j]) / (ds_ * dt);
+        const Vector6 mean = 0.5 * (rate_[j] + rate_after);
+        Vector6 d_sigma = V.cwiseProduct(mean - rate_[j]);
+        if (kirchhoff_) d_sigma.tail<3>().setZero();  // the constraint carries the force
+        dissipated += ds_ * (mean.dot(V.cwiseProduct(mean)) - rate_[j].dot(V.cwiseProduct(rate_[j])));
+        lambda = small::dexp_inv_transpose_apply(x_[j], d_sigma, ef_[j]);
+      }
+      if (j > 0 && !(clamped_ && j == n_ - 1)) {
+        const double w = j == n_ - 1 ? 0.5 * ds_ : ds_;
+        Vector6 force = lambda - G_[j - 1].coAd_apply(lambda_prev);
+        if (drag) {
+          const Vector6 mean = 0.5 * (eta_old_[j] + eta_[j]);
+          const Vector6 d_mean = P_.drag_load(mean), d_old = P_.drag_load(eta_old_[j]);
+          force += w * (d_mean - d_old);
+          dissipated -= w * (d_mean.dot(mean) - d_old.dot(eta_old_[j]));
+        }
+        const Vector6 mu_predicted = mu_[j];
+        mu_[j] += (dt / w) * force;
+        if (!legendre_.solve(dt, mu_[j], mu_predicted, eta_[j])) return j;  // (3.42)
+      }
+      lambda_prev = lambda;
+      E = E_next;
+    }
+    return -1;
   }
 
   /// Kirchhoff rods: the rod's own wrench has no force part (nu = nu* holds; the force across
@@ -327,10 +442,16 @@ class Variational final : public Stepper {
   double dt_last_ = 0.0;  ///< the last step's dt (the momenta of a moved state, add_tangent)
   bool kirchhoff_ = false;
   bool clamped_ = false;  ///< the tip node is held by a clamp (not solved)
+  bool started_ = false;  ///< the velocities are those over the steps (after the half kick)
   Vector3 nu_star_;
   std::optional<KirchhoffConstraint> constraint_;  ///< Kirchhoff rods only
   std::optional<VariationalActuators> act_;        ///< muscles, length control (kActuated)
   std::vector<Vector6> xi_new_;                    ///< the pre-pass's strains (kActuated)
+  // Verlet with viscosity or drag (correct_damping): per segment ds xi, its log coefficients and
+  // the rate over the step; per node the velocity over the step.
+  bool trapezoidal_damping_ = false;
+  std::vector<Vector6> x_, rate_, eta_old_;
+  std::vector<small::EF> ef_;
 };
 
 }  // namespace

@@ -142,6 +142,8 @@ struct Solver {
   /// `implicit-midpoint`, `bdf-alpha`: the march's spatial grid, "euler" (the thesis) or
   /// "staggered"; nullopt: euler
   std::optional<std::string> grid;
+  /// `variational`: "verlet" (second order) or "symplectic-euler" (the thesis); nullopt: verlet
+  std::optional<std::string> variational_step;
 };
 
 enum class ControlTask { reach, hold, track };  // YAML: reach | hold | track

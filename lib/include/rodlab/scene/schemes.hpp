@@ -58,8 +58,9 @@ inline constexpr std::array<SchemeInfo, kSchemeCount> kSchemeCatalogue{{
      "Chebyshev-Lobatto pseudospectral collocation, Newton with a dense Jacobian"},
     {SchemeId::kinsol, "kinsol", Problem::statics, ">=4", true, true,
      "reference: Lie-group Hermite-Simpson (RKMK Lobatto IIIA) collocation, KINSOL + KLU"},
-    {SchemeId::variational, "variational", Problem::dynamics, "1 (t) / 2 (s)", false, false,
-     "explicit discrete variational Lie-group integrator (thesis Algorithm 1)"},
+    {SchemeId::variational, "variational", Problem::dynamics, "2 (t) / 2 (s)", false, false,
+     "explicit discrete variational Lie-group integrator (thesis Algorithm 1), Stormer-Verlet "
+     "start (first order in t as the thesis: solver.variational_step symplectic-euler)"},
     {SchemeId::implicit_midpoint, "implicit-midpoint", Problem::dynamics, "2 (t) / 2 (s)", true,
      false,
      "implicit midpoint in time, single shooting in space on the staggered grid (thesis "

@@ -11,6 +11,7 @@
 #include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
 #include "rodlab/solvers/dynamics/shooting/bdf_alpha.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
+#include "rodlab/solvers/dynamics/variational/variational.hpp"
 
 namespace rodlab::solvers::dynamics {
 
@@ -26,6 +27,8 @@ struct DynamicSolveOptions {
   int max_iterations = 50;  ///< per nonlinear solve
   ShootingGrid grid = ShootingOptions{}.grid;  ///< `implicit-midpoint`, `bdf-alpha`: solver.grid
   double alpha = BdfAlphaOptions{}.alpha;      ///< `bdf-alpha`: in [-0.5, 0] (0 BDF2, -0.5 trapezoidal)
+  /// `variational`: solver.variational_step (verlet, second order; symplectic-euler, the thesis)
+  VariationalStep variational_step = VariationalOptions{}.step;
   double rtol = IdaOptions{}.rtol;  ///< `ida`: relative tolerance of the time integration
   double atol = IdaOptions{}.atol;  ///< `ida`: absolute tolerance (scaled per component, ida_reference.hpp)
   scene::Initial initial = scene::Initial::straight;
@@ -40,7 +43,7 @@ struct DynamicSolveOptions {
   std::function<void(long done, long steps, double t, double dt)> on_step;
 };
 
-/// The scheme options a scene sets (solver.alpha, solver.grid) and its initial state
+/// The scheme options a scene sets (solver.alpha, solver.grid, solver.variational_step) and its initial state
 /// (dynamics.initial), over the defaults: what `rodlab dynamic` and the studies take from it.
 void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options);
 

@@ -17,17 +17,31 @@
 // configuration, drag at the old velocity. Kirchhoff rods (nu = nu*) get constraint forces per
 // segment, solved each step so that the next step's segments satisfy the constraint (SHAKE;
 // kirchhoff_constraint.hpp, docs/dynamics.md).
+//
+// The time rule (VariationalStep): `verlet` (the default) starts with half a step's impulse at
+// the initial configuration, which makes the velocities those of the half steps and the scheme
+// the Lie-group Stormer-Verlet (leapfrog) of the trapezoidal discrete Lagrangian: second order
+// in time for conservative loads. `symplectic-euler` starts with the initial velocity over the
+// first step, as the thesis does: first order. The steps after the first are the same.
 #include <memory>
+#include <optional>
+#include <string_view>
 
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 
 namespace rodlab::solvers::dynamics {
 
+enum class VariationalStep { verlet, symplectic_euler };
+/// "verlet", "symplectic-euler"; nullopt for any other name.
+std::string_view variational_step_name(VariationalStep step);
+std::optional<VariationalStep> variational_step_from_name(std::string_view name);
+
 struct VariationalOptions {
   int nodes = 20;
   double tol = 1e-12;      ///< relative tolerance of the Newton solve of (3.42)
   int max_iterations = 20; ///< Newton iterations per node and step
+  VariationalStep step = VariationalStep::verlet;
 };
 
 /// Starts at rest from `initial` (options.nodes nodes).
