@@ -1,12 +1,16 @@
 // Dynamics benchmarks: the cost of one time step per node (the hot path of every dynamics
 // scheme) against N, on the viscous cantilever of thesis 3.4 (Table 2.1 rod, alpha = 300 Pa s,
 // gravity along -x), stepping from rest in the straight configuration at the scheme's automatic
-// step. Run: build/bin/bench_dynamics --benchmark_repetitions=5
+// step (variational also undamped, and with the thesis' symplectic-Euler time rule, whose
+// damping is lagged: no corrector pass). Run: build/bin/bench_dynamics --benchmark_repetitions=5
 // Counter ns_per_node_step = time per step / N; real_time_ratio = wall time per simulated second.
 #include <benchmark/benchmark.h>
 
 #include <memory>
 #include <string>
+#include <tuple>
+
+#include <fmt/format.h>
 
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/rod/energies.hpp"
@@ -21,17 +25,21 @@ namespace {
 using namespace rodlab;
 using namespace rodlab::solvers::dynamics;
 
-const char* kViscousCantilever = R"(schema: rodlab.scene/1
-name: viscous-cantilever
+/// The Table 2.1 cantilever under gravity with Kelvin-Voigt viscosity alpha [Pa s].
+std::string cantilever(double viscosity) {
+  return fmt::format(R"(schema: rodlab.scene/1
+name: cantilever
 rod:
   length: 0.1
-  section: {shape: circle, diameter: 0.01}
-  material: {E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: 300}
+  section: {{shape: circle, diameter: 0.01}}
+  material: {{E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: {}}}
 tip:
-  free: {}
+  free: {{}}
 loads:
   gravity: [-9.81, 0, 0]
-)";
+)",
+                     viscosity);
+}
 
 RestState straight(const DynamicProblem& p, int n) {
   RestState s{std::vector<SE3>(n), std::vector<Vector6>(n, p.model().xi_star())};
@@ -41,10 +49,10 @@ RestState straight(const DynamicProblem& p, int n) {
 }
 
 /// `fixed_dt` > 0: that step instead of the scheme's automatic one; `grid`: the shooting
-/// schemes' spatial grid.
+/// schemes' spatial grid; `rule` and `viscosity`: variational's time rule and the rod's alpha.
 void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt,
-                    ShootingGrid grid) {
-  const auto scene = io::load_scene_from_string(kViscousCantilever, "bench.yaml");
+                    ShootingGrid grid, VariationalStep rule, double viscosity) {
+  const auto scene = io::load_scene_from_string(cantilever(viscosity), "bench.yaml");
   const auto problem = DynamicProblem::from_scene(scene);
   const int n = static_cast<int>(state.range(0));
   const double dt = fixed_dt > 0.0 ? fixed_dt : auto_time_step(problem, scheme, n);
@@ -54,7 +62,7 @@ void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt
       return make_implicit_midpoint_collocation(problem, {.nodes = n}, initial);
     if (scheme == "bdf-alpha")  // Till's alpha = -0.2
       return make_bdf_alpha(problem, {{n, 1e-10, 50, grid}, kDefaultBdfAlpha}, initial);
-    return scheme == "variational" ? make_variational(problem, {n, 1e-12, 20}, initial)
+    return scheme == "variational" ? make_variational(problem, {n, 1e-12, 20, rule}, initial)
                                    : make_implicit_midpoint(problem, {n, 1e-10, 50, grid}, initial);
   };
   // Time steps 10..kWindow of runs from rest, restarted outside the timing: the same window of
@@ -92,7 +100,19 @@ void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt
 const bool registered = [] {
   for (const char* scheme : {"variational", "implicit-midpoint", "bdf-alpha"}) {
     auto* b = benchmark::RegisterBenchmark((std::string("step/") + scheme).c_str(), step_benchmark,
-                                           std::string(scheme), 0.0, ShootingGrid::euler);
+                                           std::string(scheme), 0.0, ShootingGrid::euler,
+                                           VariationalStep::verlet, 300.0);
+    for (int n : {10, 20, 50, 100}) b->Arg(n);
+    b->Unit(benchmark::kMicrosecond);
+  }
+  // variational undamped (no corrector pass) and with the thesis' time rule.
+  for (const auto& [name, rule, viscosity] :
+       {std::tuple{"step/variational/undamped", VariationalStep::verlet, 0.0},
+        std::tuple{"step/variational/step=symplectic-euler", VariationalStep::symplectic_euler,
+                   300.0}}) {
+    auto* b = benchmark::RegisterBenchmark(name, [rule, viscosity](benchmark::State& state) {
+      step_benchmark(state, "variational", 0.0, ShootingGrid::euler, rule, viscosity);
+    });
     for (int n : {10, 20, 50, 100}) b->Arg(n);
     b->Unit(benchmark::kMicrosecond);
   }
@@ -101,7 +121,8 @@ const bool registered = [] {
     auto* b = benchmark::RegisterBenchmark(
         (std::string("step/") + scheme + "/grid=staggered").c_str(),
         [scheme](benchmark::State& state) {
-          step_benchmark(state, scheme, 0.0, ShootingGrid::staggered);
+          step_benchmark(state, scheme, 0.0, ShootingGrid::staggered, VariationalStep::verlet,
+                         300.0);
         });
     for (int n : {10, 20, 50, 100}) b->Arg(n);
     b->Unit(benchmark::kMicrosecond);
@@ -109,7 +130,7 @@ const bool registered = [] {
   // implicit-midpoint-collocation: KINSOL + KLU on the whole rod per step (cost per node-step).
   auto* c = benchmark::RegisterBenchmark("step/implicit-midpoint-collocation", step_benchmark,
                                          std::string("implicit-midpoint-collocation"), 0.0,
-                                         ShootingGrid::euler);
+                                         ShootingGrid::euler, VariationalStep::verlet, 300.0);
   for (int n : {20, 100}) c->Arg(n);
   c->Unit(benchmark::kMicrosecond);
   // The same at fine steps (the scheme has no lower time-step bound; fine-dt studies).
@@ -118,7 +139,8 @@ const bool registered = [] {
         (std::string("step/implicit-midpoint-collocation/dt=") + (dt == 1e-3 ? "1ms" : "0.1ms"))
             .c_str(),
         [dt](benchmark::State& state) {
-          step_benchmark(state, "implicit-midpoint-collocation", dt, ShootingGrid::euler);
+          step_benchmark(state, "implicit-midpoint-collocation", dt, ShootingGrid::euler,
+                         VariationalStep::verlet, 300.0);
         });
     for (int n : {20, 100}) f->Arg(n);
     f->Unit(benchmark::kMicrosecond);

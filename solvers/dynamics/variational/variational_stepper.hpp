@@ -327,7 +327,7 @@ class Variational final : public Stepper {
   /// those of the half steps and the poses second order. The strain rate in the stress is the
   /// one over the first step at the current velocities (zero from rest). No energy is booked:
   /// nothing moves.
-  StepStatus half_kick(double t, double dt) {
+  [[gnu::noinline]] StepStatus half_kick(double t, double dt) {
     const bool applied = (P_.applied_load(SO3(), t).array() != 0.0).any();
     double kinetic = kinetic_old_, dissipated = 0.0, work = 0.0;  // discarded
     Vector6 lambda_prev = Vector6::Zero();
@@ -370,7 +370,7 @@ class Variational final : public Stepper {
   /// + c) <= 2 and omega dt < 2, where the lagged form needs omega^2 dt^2 + 2 dt (tau omega^2 +
   /// c) < 4: docs/dynamics.md "Second order in time"). The dissipation booked by the main pass
   /// is replaced by the mean rates'. Returns -1, or the node whose (3.42) diverged.
-  int correct_damping(double dt, bool drag, double& dissipated) {
+  [[gnu::noinline]] int correct_damping(double dt, bool drag, double& dissipated) {
     const Vector6& V = P_.model().V_diag();
     SE3 E = SE3::identity();  // E^j at the predicted velocities; the base does not move
     Vector6 lambda_prev = Vector6::Zero();

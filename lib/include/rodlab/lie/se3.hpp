@@ -275,7 +275,7 @@ class SE3 {
   }
 
   /// Ad_g^T W = [R^T (m - p x f); R^T f] (transforms a wrench, (1.19), (2.35)).
-  Vector6 coAd_apply(const Vector6& W) const {
+  [[gnu::always_inline]] Vector6 coAd_apply(const Vector6& W) const {
     const SO3 Rt = R_.inverse();
     const Vector3 f = W.tail<3>();
     return se3::join(Rt * (Vector3(W.head<3>()) - p_.cross(f)), Rt * f);

@@ -140,7 +140,7 @@ inline Vector6 dexp_transpose_apply(const Vector6& xi, const Vector6& lambda, co
 }
 
 /// SE3::exp(xi).
-inline SE3 exp(const Vector6& xi) {
+[[gnu::always_inline]] inline SE3 exp(const Vector6& xi) {
   const Vector3 w = xi.head<3>(), v = xi.tail<3>();
   const double t2 = w.squaredNorm();
   if (t2 >= kSmallAngle * kSmallAngle) return SE3::exp(xi);
