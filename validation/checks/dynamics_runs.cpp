@@ -43,6 +43,7 @@ double auto_dt(const scene::Scene& s, std::string_view scheme, int nodes) {
 DynamicResult simulate(const scene::Scene& s, const std::string& scheme, int nodes, double dt,
                        double t_end, scene::Initial initial, int outputs) {
   DynamicSolveOptions o;
+  solvers::dynamics::apply_scene_options(s, o);  // solver.variational_step, as `rodlab dynamic`
   o.scheme = scheme;
   o.nodes = nodes;
   o.dt = dt;

@@ -14,7 +14,8 @@
 //   dexp^-T_{dt eta^j} M eta^j = mu^j, solved for eta^j by Newton   (3.42)
 // with trapezoid weights w_j (1/2 at the tip node; the thesis gives the tip a full cell, which
 // makes the scheme first order in space). Conservative loads are evaluated at the new
-// configuration, drag at the old velocity. Kirchhoff rods (nu = nu*) get constraint forces per
+// configuration; viscosity and drag at the mean of the rates before and after it (verlet, by a
+// corrector pass) or at the old ones (symplectic-euler). Kirchhoff rods (nu = nu*) get constraint forces per
 // segment, solved each step so that the next step's segments satisfy the constraint (SHAKE;
 // kirchhoff_constraint.hpp, docs/dynamics.md).
 //
