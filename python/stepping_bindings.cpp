@@ -3,7 +3,6 @@
 #include "bindings.hpp"
 
 #include "rodlab/solvers/control/plant.hpp"
-#include "rodlab/solvers/dynamics/shooting/step_bound.hpp"
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/registry.hpp"
@@ -35,12 +34,10 @@ class Simulation {
     if (!(dt_ > 0.0)) throw py::value_error("dt must be > 0");
     options_.dt = dt_;
     // refused up front where single shooting cannot converge, as solve_dynamic does
+    if (const std::string why = solvers::dynamics::step_problem(*problem_, options_, dt_);
+        !why.empty())
+      throw py::value_error(why);
     const auto id = solvers::scheme_for(options_.scheme, solvers::Problem::dynamics).id;
-    if (id == solvers::SchemeId::implicit_midpoint || id == solvers::SchemeId::bdf_alpha)
-      if (const std::string why = solvers::dynamics::single_shooting_step_problem(
-              *problem_, options_.scheme, options_.grid, dt_, options_.tol);
-          !why.empty())
-        throw py::value_error(why);
     std::string failure;
     const auto initial = solvers::dynamics::initial_state(scene_, *problem_, options_, failure);
     if (!failure.empty()) throw std::runtime_error("the initial state: " + failure);

@@ -98,6 +98,13 @@ void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options
   if (scene.dynamics) options.initial = scene.dynamics->initial;
 }
 
+std::string step_problem(const DynamicProblem& problem, const DynamicSolveOptions& options,
+                         double dt) {
+  const SchemeId id = scheme_for(options.scheme, Problem::dynamics).id;
+  if (id != SchemeId::implicit_midpoint && id != SchemeId::bdf_alpha) return {};
+  return single_shooting_step_problem(problem, options.scheme, options.grid, dt, options.tol);
+}
+
 result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolveOptions& options) {
   RODLAB_THROW_UNLESS(options.nodes >= min_nodes(Problem::dynamics), "nodes must be >= {}",
                       min_nodes(Problem::dynamics));
@@ -118,12 +125,9 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   // Equal steps that end exactly at t_end (a variational integrator keeps its step).
   const long steps = std::max(1L, std::lround(std::ceil(options.t_end / options.dt - 1e-9)));
   const double dt = options.t_end / static_cast<double>(steps);
-  if (scheme.id == SchemeId::implicit_midpoint || scheme.id == SchemeId::bdf_alpha) {
-    // refused before it starts where single shooting cannot converge (step_bound.hpp)
-    const std::string why =
-        single_shooting_step_problem(problem, options.scheme, options.grid, dt, options.tol);
-    if (!why.empty()) throw std::invalid_argument(why);
-  }
+  // refused before it starts where single shooting cannot converge (step_bound.hpp)
+  if (const std::string why = step_problem(problem, options, dt); !why.empty())
+    throw std::invalid_argument(why);
   out.dt = dt;
   const auto start = std::chrono::steady_clock::now();
   const DeadlineScope deadline(options.max_wall_time);

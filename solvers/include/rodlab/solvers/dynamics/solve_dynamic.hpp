@@ -54,6 +54,12 @@ void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options
 RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem,
                         const DynamicSolveOptions& options, std::string& failure);
 
+/// Why options.scheme cannot run at the step dt on `problem`, or "" when it can: single
+/// shooting (implicit-midpoint, bdf-alpha) has a lower step bound (step_bound.hpp). Runs are
+/// refused with it before they start (solve_dynamic, rodlab.Simulation).
+std::string step_problem(const DynamicProblem& problem, const DynamicSolveOptions& options,
+                         double dt);
+
 /// Runs the simulation. Throws std::invalid_argument for bad options or unsupported scene
 /// features; a failed step or an instability ends the run with converged = false and the reason.
 result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolveOptions& options);
