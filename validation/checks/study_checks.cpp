@@ -440,71 +440,59 @@ study::Stability explicit_stability(const ValidationContext& context, const std:
   return study::run_stability(s, kTwoJobs);
 }
 
-/// Verlet (variational's default) against the same computed limit, which is the thesis' rule's
-/// (Jury criterion of the lagged damping) and which `dt: auto` uses for both rules at 0.9: the
-/// Heun corrector's region contains the lagged one (docs/dynamics.md "Second order in time"),
-/// so the measured limit must stay above 0.92 of it (auto's 0.9 with a margin).
-void verlet_stability_map(const ValidationContext& context, std::vector<Check>& out) {
-  const study::Stability st = explicit_stability(context, "verlet");
-  DataSet d{.name = "studies_stability_verlet",
-            .description = "largest stable step of variational with its default time rule "
-                           "(verlet: trapezoidal damping by a Heun corrector), as the previous "
-                           "table, against the computed limit of the lagged rule",
-            .columns = {"series", "E", "nodes", "dt_linear", "dt_max", "ratio", "runs"}};
-  for (const auto& l : st.limits) {
-    const double ratio = l.dt_linear > 0 ? l.dt_max / l.dt_linear : double(NAN);
-    d.add_row({"verlet E=" + io::format_number(l.E) + " Pa", l.E, l.nodes, l.dt_linear, l.dt_max,
-               ratio, l.runs});
-    Check c = range_check("stability map: variational (verlet) measured / computed limit, N = " +
-                              std::to_string(l.nodes) + ", E = " + io::format_number(l.E) + " Pa",
-                          ratio, 0.92, 64.0,
-                          "dt: auto = 0.9 x the computed (lagged) limit stays stable "
-                          "(variational_stable_step)");
-    c.detail += "; dt_max " + io::format_number(l.dt_max) + " s, computed " +
-                io::format_number(l.dt_linear) + " s";
-    out.push_back(std::move(c));
-  }
-  d.figures.push_back({.name = "studies_stability_verlet",
-                       .kind = "loglog",
-                       .x = "nodes",
-                       .y = {"dt_max", "dt_linear"},
-                       .series = "series",
-                       .title = "variational (verlet): step limit against N",
-                       .xlabel = "N (nodes)",
-                       .ylabel = "dt [s]",
-                       .caption = "The measured largest stable step of variational with its "
-                                  "default Stormer-Verlet rule (dt_max) and the computed limit "
-                                  "of the lagged rule (dt_linear) that dt: auto uses.",
-                       .style = "lines+markers"});
-  context.emit(std::move(d));
-}
-
-/// The explicit scheme's measured stability limit against the computed one, over N and E: the
-/// thesis' time rule (symplectic-euler), whose criterion time_step.hpp computes.
-void explicit_stability_map(const ValidationContext& context, std::vector<Check>& out) {
-  const study::Stability st = explicit_stability(context, "symplectic-euler");
-  if (st.limits.empty()) return;
-  DataSet d{.name = "studies_stability_explicit",
-            .description =
-                "largest stable step of the explicit schemes (bisection to 0.5 %, "
-                "runs of 2000 steps from the viscous cantilever's initial state) "
-                "against N and E (G scaled with E), and the computed limit",
-            .columns = {"series", "scheme", "E", "log10_E", "nodes", "dt_linear", "dt_max",
+/// The explicit scheme's stability study with variational's time rule `rule` as a data set
+/// (one row per N and E) and one check per limit: measured / computed (variational_stable_step)
+/// in [lo, hi]. `label` follows the scheme's name in the series and the checks.
+DataSet stability_limits(const ValidationContext& context, const std::string& rule,
+                         const std::string& label, double lo, double hi, const std::string& why,
+                         std::vector<Check>& out) {
+  const study::Stability st = explicit_stability(context, rule);
+  DataSet d{.columns = {"series", "scheme", "E", "log10_E", "nodes", "dt_linear", "dt_max",
                         "dt_unstable", "safety_factor", "runs"}};
   for (const auto& l : st.limits) {
     const double ratio = l.dt_linear > 0 ? l.dt_max / l.dt_linear : double(NAN);
-    d.add_row({l.scheme + " E=" + io::format_number(l.E) + " Pa", l.scheme, l.E, std::log10(l.E),
+    const std::string scheme = l.scheme + label;
+    d.add_row({scheme + " E=" + io::format_number(l.E) + " Pa", scheme, l.E, std::log10(l.E),
                l.nodes, l.dt_linear, l.dt_max, l.dt_unstable, ratio, l.runs});
-    Check c = range_check("stability map: " + l.scheme + " measured / computed limit, N = " +
+    Check c = range_check("stability map: " + scheme + " measured / computed limit, N = " +
                               std::to_string(l.nodes) + ", E = " + io::format_number(l.E) + " Pa",
-                          ratio, 0.95, 1.05,
-                          "Jury criterion with the von Neumann omega_max "
-                          "(variational_stable_step, docs/dynamics.md)");
+                          ratio, lo, hi, why);
     c.detail += "; dt_max " + io::format_number(l.dt_max) + " s, computed " +
                 io::format_number(l.dt_linear) + " s, " + std::to_string(l.runs) + " runs" +
                 (l.note.empty() ? "" : "; " + l.note);
     out.push_back(std::move(c));
   }
+  return d;
+}
+
+/// The measured largest stable step and the computed limit against N, one curve per E.
+FigureSpec step_limit_figure(const std::string& name, const std::string& title,
+                             const std::string& caption) {
+  return {.name = name,
+          .kind = "loglog",
+          .x = "nodes",
+          .y = {"dt_max", "dt_linear"},
+          .series = "series",
+          .title = title,
+          .xlabel = "N (nodes)",
+          .ylabel = "dt [s]",
+          .caption = caption,
+          .style = "lines+markers"};
+}
+
+/// The explicit scheme's measured stability limit against the computed one, over N and E: the
+/// thesis' time rule (symplectic-euler), whose criterion time_step.hpp computes.
+void explicit_stability_map(const ValidationContext& context, std::vector<Check>& out) {
+  DataSet d = stability_limits(context, "symplectic-euler", "", 0.95, 1.05,
+                               "Jury criterion with the von Neumann omega_max "
+                               "(variational_stable_step, docs/dynamics.md)",
+                               out);
+  if (d.rows.empty()) return;
+  d.name = "studies_stability_explicit";
+  d.description =
+      "largest stable step of the explicit schemes (bisection to 0.5 %, runs of 2000 steps from "
+      "the viscous cantilever's initial state) against N and E (G scaled with E), and the "
+      "computed limit";
   d.figures.push_back({.name = "studies_stability_map",
                        .kind = "map",
                        .x = "nodes",
@@ -517,18 +505,31 @@ void explicit_stability_map(const ValidationContext& context, std::vector<Check>
                                   "cantilever), divided by the computed limit "
                                   "variational_stable_step, for N = 10, 20, 40 and E = 1e4, "
                                   "1e6, 1e8 Pa (colour: the ratio, 1 = the computed limit)."});
-  d.figures.push_back({.name = "studies_stability_dt",
-                       .kind = "loglog",
-                       .x = "nodes",
-                       .y = {"dt_max", "dt_linear"},
-                       .series = "series",
-                       .title = "Explicit step limit against N",
-                       .xlabel = "N (nodes)",
-                       .ylabel = "dt [s]",
-                       .caption = "The measured largest stable step (dt_max) and the computed "
-                                  "limit (dt_linear) of the explicit scheme against N for "
-                                  "each E.",
-                       .style = "lines+markers"});
+  d.figures.push_back(step_limit_figure(
+      "studies_stability_dt", "Explicit step limit against N",
+      "The measured largest stable step (dt_max) and the computed limit (dt_linear) of the "
+      "explicit scheme against N for each E."));
+  context.emit(std::move(d));
+}
+
+/// Verlet (variational's default) against the same computed limit, which is the thesis' rule's
+/// (Jury criterion of the lagged damping) and which `dt: auto` uses for both rules at 0.9: the
+/// Heun corrector's region contains the lagged one (docs/dynamics.md "Second order in time"),
+/// so the measured limit must stay above 0.92 of it (auto's 0.9 with a margin).
+void verlet_stability_map(const ValidationContext& context, std::vector<Check>& out) {
+  DataSet d = stability_limits(context, "verlet", " (verlet)", 0.92, 64.0,
+                               "dt: auto = 0.9 x the computed (lagged) limit stays stable "
+                               "(variational_stable_step)",
+                               out);
+  if (d.rows.empty()) return;
+  d.name = "studies_stability_verlet";
+  d.description = "largest stable step of variational with its default time rule (verlet: "
+                  "trapezoidal damping by a Heun corrector), as the previous table, against the "
+                  "computed limit of the lagged rule";
+  d.figures.push_back(step_limit_figure(
+      "studies_stability_verlet", "variational (verlet): step limit against N",
+      "The measured largest stable step of variational with its default Stormer-Verlet rule "
+      "(dt_max) and the computed limit of the lagged rule (dt_linear) that dt: auto uses."));
   context.emit(std::move(d));
 }
 
