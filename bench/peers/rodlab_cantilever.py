@@ -1,73 +1,62 @@
 """rodlab's side of the peer comparison (issue #17 item 4, docs/performance.md): the Table 2.1
-cantilever (scenes/cantilever-gravity.yaml) released straight under gravity, 0.5 s, undamped;
-error = the largest tip deviation over the run from a converged reference (ida at N = 50 and
-100, rtol = atol = 1e-10, Richardson-extrapolated in ds at second order; ida at N = 100 is
-within 7e-6 m of it); wall = the median over 5 runs of the result's wall_time_s, one core.
+cantilever released straight under gravity for 0.5 s (bench/peers/common.py: scene, reference,
+error). Runs `variational` at its automatic step for each N and time rule; wall = the median
+over --repeats runs of the result's wall_time_s, one core (taskset -c 1).
 
-    python3 bench/peers/rodlab_cantilever.py [--nodes 10,20,30,40] [--rodlab build/bin/rodlab]
+    python3 bench/peers/rodlab_cantilever.py [--viscosity 0] [--nodes 6,8,10,14,20,30,40]
 
-The references take about 25 s (N = 100) on one core; they are cached in --work (default
-out/peers). The peers' own scripts (PyElastica, Till's examples) are not in the repository yet:
-docs/performance.md says where they stand.
+The two ida references take about 25 s (N = 100) on one core and are cached in --work (default
+out/peers); the points go to <work>/rodlab-<case>.csv for bench/peers/side_by_side.py.
 """
 import argparse
-import json
 import os
 import statistics
 import subprocess
 
-import numpy as np
-
-SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SCENE = os.path.join(SOURCE, "scenes", "cantilever-gravity.yaml")
-
-
-def load(path):
-    r = json.load(open(path))
-    return np.array(r["series"]["t"]), np.array(r["series"]["tip_position"]), r
-
-
-def run(rodlab, out, *args):
-    subprocess.run(["taskset", "-c", "1", rodlab, "dynamic", SCENE, "--t-end", "0.5", "--quiet",
-                    "--out", out, *map(str, args)], check=True, capture_output=True)
-
-
-def reference(rodlab, work):
-    """The converged tip: ida at N = 50 and 100, Richardson in ds (second order)."""
-    runs = {}
-    for n in (50, 100):
-        path = os.path.join(work, f"ida{n}.json")
-        if not os.path.exists(path):
-            run(rodlab, path, "--scheme", "ida", "--nodes", n, "--dt", 5e-4, "--rtol", 1e-10,
-                "--atol", 1e-10)
-        runs[n] = load(path)
-    t, fine, _ = runs[100]
-    coarse = runs[50][1]
-    ratio = (99 / 49) ** 2
-    return t, fine + (fine - coarse) / (ratio - 1)
+import common
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--nodes", default="10,20,30,40")
-    parser.add_argument("--rodlab", default=os.path.join(SOURCE, "build", "bin", "rodlab"))
-    parser.add_argument("--work", default=os.path.join(SOURCE, "out", "peers"))
+    parser.add_argument("--nodes", default="6,8,10,14,20,30,40")
+    parser.add_argument("--rules", default="verlet,symplectic-euler")
+    parser.add_argument("--implicit", default="implicit-midpoint,bdf-alpha")
+    parser.add_argument("--implicit-nodes", default="6,8,10,14,20")
+    parser.add_argument("--dts", default="1e-2,5e-3,3e-3,2e-3", help="the implicit schemes' steps")
+    parser.add_argument("--viscosity", type=float, default=0.0, help="alpha [Pa s]")
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--rodlab", default=common.DEFAULT_RODLAB)
+    parser.add_argument("--work", default=common.DEFAULT_WORK)
     a = parser.parse_args()
     os.makedirs(a.work, exist_ok=True)
-    t_ref, ref = reference(a.rodlab, a.work)
-    print("rule, N, dt [s], steps, max tip error [m], median wall [ms]")
-    for rule in ("verlet", "symplectic-euler"):
-        for n in (int(v) for v in a.nodes.split(",")):
-            walls = []
-            for _ in range(5):
-                out = os.path.join(a.work, "variational.json")
-                run(a.rodlab, out, "--scheme", "variational", "--nodes", n,
-                    "--variational-step", rule)
-                t, x, r = load(out)
+    ref = common.reference(a.rodlab, a.work, a.viscosity)
+    out = os.path.join(a.work, "rodlab-run.json")
+    runs = [(f"variational {rule}", n, None, ["--scheme", "variational", "--variational-step", rule])
+            for rule in a.rules.split(",") for n in (int(v) for v in a.nodes.split(","))]
+    runs += [(f"{scheme}, {grid} grid", n, dt,
+              ["--scheme", scheme, "--set", f"solver.grid={grid}", "--dt", dt])
+             for scheme in a.implicit.split(",") if scheme for grid in ("staggered", "euler")
+             for n in (int(v) for v in a.implicit_nodes.split(","))
+             for dt in (float(v) for v in a.dts.split(","))]
+    rows = []
+    print("configuration, N, dt [s], steps, max tip error [m], median wall [ms]")
+    for configuration, n, dt, args in runs:
+        walls = []
+        try:
+            for _ in range(a.repeats):
+                t, x, r = common.run_rodlab(a.rodlab, out, a.viscosity, "--nodes", n, *args)
                 walls.append(r["wall_time_s"])
-            error = max(np.abs(np.interp(t_ref, t, x[:, k]) - ref[:, k]).max() for k in range(3))
-            print(f"{rule}, {n}, {r['dt']:.4g}, {r['steps']}, {error:.3e}, "
-                  f"{statistics.median(walls) * 1e3:.2f}", flush=True)
+        except subprocess.CalledProcessError:
+            print(f"{configuration}, {n}, {dt:g}: did not reach the end: "
+                  f"{common.load_result(out)[2].get('reason', '')[:80]}", flush=True)
+            continue
+        row = dict(code="rodlab", configuration=configuration, nodes=n, dt_s=r["dt"],
+                   steps=r["steps"], max_tip_error_m=common.tip_error(t, x, ref),
+                   wall_ms=statistics.median(walls) * 1e3)
+        rows.append(row)
+        print(f"{configuration}, {n}, {row['dt_s']:.4g}, {row['steps']}, "
+              f"{row['max_tip_error_m']:.3e}, {row['wall_ms']:.2f}", flush=True)
+    common.write_rows(os.path.join(a.work, f"rodlab-{common.case_name(a.viscosity)}.csv"), rows)
 
 
 if __name__ == "__main__":
