@@ -13,6 +13,8 @@
 // Run: build/bin/bench_control --benchmark_repetitions=5 (one core, idle machine).
 #include <benchmark/benchmark.h>
 
+#include "bench_main.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -132,4 +134,4 @@ BENCHMARK(ilqr_iteration)
 
 }  // namespace
 
-BENCHMARK_MAIN();
+RODLAB_BENCHMARK_MAIN()

@@ -6,6 +6,8 @@
 // Counter ns_per_node_step = time per step / N; real_time_ratio = wall time per simulated second.
 #include <benchmark/benchmark.h>
 
+#include "bench_main.hpp"
+
 #include <memory>
 #include <string>
 #include <tuple>
@@ -71,13 +73,20 @@ void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt
   std::unique_ptr<Stepper> stepper;
   double t = 0.0;
   int in_window = kWindow;
-  long iterations = 0, steps = 0;
+  long iterations = 0, steps = 0, jacobians = 0;
+  auto jacobians_of = [](const Stepper* s) {
+    const auto* c = dynamic_cast<const ImplicitMidpointCollocationStepper*>(s);
+    return c ? c->jacobian_evaluations() : 0L;
+  };
+  long jacobians_at_window_start = 0;
   for (auto _ : state) {
     if (in_window == kWindow) {
       state.PauseTiming();
+      if (stepper) jacobians += jacobians_of(stepper.get()) - jacobians_at_window_start;
       stepper = fresh();
       t = 0.0;
       for (int i = 0; i < 10; ++i, t += dt) stepper->step(t, dt);
+      jacobians_at_window_start = jacobians_of(stepper.get());
       in_window = 10;
       state.ResumeTiming();
     }
@@ -93,8 +102,13 @@ void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt
   state.counters["real_time_ratio"] = benchmark::Counter(
       dt, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.counters["dt"] = dt;
-  if (scheme != "variational")
+  if (scheme == "implicit-midpoint-collocation") {
+    jacobians += jacobians_of(stepper.get()) - jacobians_at_window_start;
+    state.counters["newton_iterations_per_step"] = static_cast<double>(iterations) / std::max(1L, steps);
+    state.counters["jacobians_per_step"] = static_cast<double>(jacobians) / std::max(1L, steps);
+  } else if (scheme != "variational") {
     state.counters["integrations_per_step"] = static_cast<double>(iterations) / std::max(1L, steps);
+  }
 }
 
 const bool registered = [] {
@@ -150,4 +164,4 @@ const bool registered = [] {
 
 }  // namespace
 
-BENCHMARK_MAIN();
+RODLAB_BENCHMARK_MAIN()

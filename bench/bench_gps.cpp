@@ -10,6 +10,8 @@
 // Run: taskset -c 0 build/bin/bench_gps --benchmark_repetitions=5 (one core, idle machine).
 #include <benchmark/benchmark.h>
 
+#include "bench_main.hpp"
+
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -100,4 +102,4 @@ BENCHMARK(dynamics_fit)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+RODLAB_BENCHMARK_MAIN()

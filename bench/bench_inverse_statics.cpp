@@ -11,6 +11,8 @@
 // Run: build/bin/bench_inverse_statics --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
+#include "bench_main.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -102,4 +104,4 @@ BENCHMARK(chebyshev_cold_solve)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+RODLAB_BENCHMARK_MAIN()

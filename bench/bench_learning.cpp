@@ -11,6 +11,8 @@
 // Run: taskset -c 0 build/bin/bench_learning --benchmark_repetitions=5 (one core, idle machine).
 #include <benchmark/benchmark.h>
 
+#include "bench_main.hpp"
+
 #include <cstdint>
 #include <random>
 
@@ -100,4 +102,4 @@ BENCHMARK(ddpg_update)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+RODLAB_BENCHMARK_MAIN()

@@ -7,6 +7,8 @@
 //   build/bin/bench_lie --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include "bench_main.hpp"
+
 #include <cmath>
 #include <cstddef>
 #include <numbers>
@@ -128,4 +130,4 @@ BENCHMARK(se3_dexp_inv_series_apply_q2);
 BENCHMARK(SE3_compose);
 BENCHMARK(SE3_coAd_apply);
 
-BENCHMARK_MAIN();
+RODLAB_BENCHMARK_MAIN()

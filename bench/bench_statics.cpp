@@ -3,6 +3,8 @@
 // (the hot path of shooting). Run: build/bin/bench_statics --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
+#include "bench_main.hpp"
+
 #include <string>
 
 #include "rodlab/solvers/schemes.hpp"
@@ -68,4 +70,4 @@ const bool registered = [] {
 
 }  // namespace
 
-BENCHMARK_MAIN();
+RODLAB_BENCHMARK_MAIN()

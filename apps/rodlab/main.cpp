@@ -1,6 +1,5 @@
 // rodlab: the command line (interface spec section 2). This file only dispatches to the
 // subcommands (cmd_*.cpp) and turns their errors into messages and exit statuses.
-#include <malloc.h>
 
 #include <array>
 #include <exception>
@@ -9,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "rodlab/heap.hpp"
 #include "rodlab/io/atomic_file.hpp"
 #include "rodlab/io/scene_loader.hpp"
 #include "rodlab/io/text_format.hpp"
@@ -113,13 +113,9 @@ int dispatch(const std::vector<std::string>& args, const std::string& command_li
 }  // namespace rodlab::cli
 
 int main(int argc, char** argv) {
-  // Large blocks (dense Newton matrices and Jacobians: 180 kB for chebyshev at N = 24, 2.9 MB
-  // for kinsol at N = 100) from the heap, kept after free, instead of fresh mmap'ed pages for
-  // every allocation: glibc adapts its threshold only after a first free, so a one-shot solve
-  // paid a page fault per page per allocation. kinsol N = 100: 1200 -> 985 faults in the solve,
-  // 11.2 -> 7.5 ms wall (docs/statics.md "Cold and warm solves").
-  mallopt(M_MMAP_THRESHOLD, 256 << 20);
-  mallopt(M_TRIM_THRESHOLD, 512 << 20);
+  // Large blocks from the heap, kept after free (rodlab/heap.hpp): a one-shot kinsol solve at
+  // N = 100 took 1200 -> 985 page faults, 11.2 -> 7.5 ms (docs/statics.md "Cold and warm solves").
+  rodlab::keep_freed_memory();
   const std::vector<std::string> args(argv + 1, argv + argc);
   std::string command_line = "rodlab";
   for (const auto& a : args) (command_line += ' ') += rodlab::io::shell_quote(a);
