@@ -241,7 +241,7 @@ void copy_numeric(klu_l_numeric*& dst, const klu_l_numeric& src, klu_l_common& c
 
 }  // namespace
 
-SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx) {
+SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx, bool natural_order) {
   SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
   if (!S) return nullptr;
   auto* c = new (std::nothrow) Content;
@@ -251,6 +251,8 @@ SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx) {
   }
   c->n = n;
   klu_l_defaults(&c->common);
+  // KLU: 0 AMD, 1 COLAMD, 2 no P and Q given (klu_analyze takes the natural order)
+  if (natural_order) c->common.ordering = 2;
   S->content = c;
   S->ops->gettype = get_type;
   S->ops->getid = get_id;

@@ -19,8 +19,8 @@ namespace rodlab::solvers::sundials {
 
 /// A new solver owned by the caller (SUNLinSolFree releases it); NULL on allocation failure.
 /// `n` is the system size; the matrix passed to setup must be a CSC SUNSparseMatrix with the
-/// same pattern at every call.
-SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx);
+/// same pattern at every call. `natural_order`: KLU keeps the pattern's column order (no AMD).
+SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx, bool natural_order = false);
 
 /// Numeric factorisations done by the solver (fresh and refactored) and setups it skipped.
 struct KeptKluCounts {

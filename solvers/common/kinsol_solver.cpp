@@ -6,6 +6,7 @@
 #include <string>
 
 #include <kinsol/kinsol.h>
+#include <sunlinsol/sunlinsol_klu.h>
 
 #include "rodlab/check.hpp"
 
@@ -77,7 +78,10 @@ void check_kinls(int flag, const char* call) {
 }  // namespace
 
 struct KinsolSolver::Impl {
-  Impl(const sundials::JacobianPattern& pattern, bool keep) : pattern(pattern) { create(keep); }
+  Impl(const sundials::JacobianPattern& pattern, bool keep, KluOrder order)
+      : pattern(pattern), order(order) {
+    create(keep);
+  }
 
   /// The SUNDIALS objects for a system of the pattern's size.
   void create(bool keep) {
@@ -89,10 +93,13 @@ struct KinsolSolver::Impl {
     f_scale = sundials::make_vector(n, ctx, "KINSOL");
     A = pattern.make_matrix(ctx);
     keep_factorisation = keep;
-    linear_solver.reset(keep ? sundials::check_created(sundials::make_kept_klu_solver(n, ctx),
+    const bool natural = order == KluOrder::natural;
+    linear_solver.reset(keep ? sundials::check_created(sundials::make_kept_klu_solver(n, ctx, natural),
                                                        "KINSOL", "make_kept_klu_solver")
                              : sundials::check_created(SUNLinSol_KLU(u.get(), A.get(), ctx),
                                                        "KINSOL", "SUNLinSol_KLU"));
+    if (!keep && natural && SUNLinSol_KLUSetOrdering(linear_solver.get(), 2) != SUNLS_SUCCESS)
+      throw std::runtime_error("KINSOL: SUNLinSol_KLUSetOrdering failed");
   }
 
   // Declaration order is destruction order reversed: the context outlives everything.
@@ -101,6 +108,7 @@ struct KinsolSolver::Impl {
   sundials::MatrixPtr A;
   sundials::LinearSolverPtr linear_solver;
   sundials::JacobianPattern pattern;  // the callback writes its values
+  KluOrder order = KluOrder::fill_reducing;
   bool keep_factorisation = false;
 
   /// What the C callbacks need during one solve.
@@ -143,12 +151,13 @@ struct KinsolSolver::Impl {
   }
 };
 
-KinsolSolver::KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation)
+KinsolSolver::KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation, KluOrder order)
     : impl_(std::make_unique<Impl>(sundials::JacobianPattern(pattern, "KinsolSolver"),
-                                   keep_factorisation)) {}
+                                   keep_factorisation, order)) {}
 
 KinsolSolver::KinsolSolver(const KinsolSolver& other)
-    : impl_(std::make_unique<Impl>(other.impl_->pattern, other.impl_->keep_factorisation)) {
+    : impl_(std::make_unique<Impl>(other.impl_->pattern, other.impl_->keep_factorisation,
+                                   other.impl_->order)) {
   assign(other);
 }
 

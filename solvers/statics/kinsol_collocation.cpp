@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rodlab/check.hpp"
+#include "rodlab/lie/small_angle.hpp"
 #include "rodlab/solvers/common/kinsol_solver.hpp"
 #include "rodlab/solvers/statics/continuation.hpp"
 #include "rodlab/solvers/statics/result_builder.hpp"
@@ -27,6 +28,7 @@ using Ref = Eigen::Ref<VectorXd>;
 using Sparse = KinsolSolver::SparseMatrix;
 
 constexpr int kState = 13;
+constexpr int kFirstWrench = 7;  // a node's unknowns: q (4), p / L (3), then Lambda / scale (6)
 constexpr int kBaseRows = 7;
 constexpr int kTipRows = 6;
 
@@ -52,7 +54,7 @@ class Collocation {
  public:
   Collocation(const StaticProblem& problem, int nodes)
       : P_(problem), N_(nodes), L_(problem.length()), extra_(problem.extra_unknowns()), node_(nodes),
-        rows_(nodes - 1), lengths_(nodes - 1) {
+        rows_(nodes - 1), chart_(nodes - 1), lengths_(nodes - 1) {
     scale_.head<4>().setOnes();
     scale_.segment<3>(4).setConstant(L_);
     scale_.tail<6>() = P_.wrench_scale();
@@ -105,22 +107,33 @@ class Collocation {
   /// (if given) receives the Simpson quadrature of each active path's length rate (the
   /// scheme's own quadrature: order 4).
   Rows interval(int i, const NodeData& a, const NodeData& b, Lengths* lengths = nullptr) const {
+    return interval(i, a, b, chart(a, b), lengths);
+  }
+
+  /// Theta(h) = log(g_a^-1 g_b) of an interval: the part of its rows that depends on the two
+  /// poses only (the Jacobian's wrench columns keep it).
+  static Vector6 chart(const NodeData& a, const NodeData& b) {
+    const Vector3 phi = (a.R.inverse() * b.R).log();
+    Vector6 Theta;
+    Theta << phi, lie::so3::dexp_inv_apply(phi, a.R.inverse() * Vector3(b.p - a.p));
+    return Theta;
+  }
+
+  /// The rows with the chart Theta of the two poses given.
+  Rows interval(int i, const NodeData& a, const NodeData& b, const Vector6& Theta,
+                Lengths* lengths) const {
     const double h = h_[i];
     const Side& A = a.right;
     const Side& B = b.left;
-    const SO3 R_ab = a.R.inverse() * b.R;
-    const Vector3 phi = R_ab.log();
-    Vector6 Theta;
-    Theta << phi, lie::so3::dexp_inv_apply(phi, a.R.inverse() * Vector3(b.p - a.p));
     const Vector6 F_a = A.xi;  // dexp^-1_0 = I
-    const Vector6 F_b = lie::se3::dexp_inv_apply(-Theta, B.xi);
+    const Vector6 F_b = lie::small_angle::dexp_inv_apply(-Theta, B.xi);
     // Midpoint stage from the cubic Hermite interpolants (compressed form).
     const Vector6 Theta_m = 0.5 * Theta + (h / 8.0) * (F_a - F_b);
     const Vector6 Lambda_m = 0.5 * (A.Lambda + B.Lambda) + (h / 8.0) * (A.dLambda - B.dLambda);
     const double s_m = s_[i] + 0.5 * h;
     const Vector6 xi_m = strain_at(Lambda_m, s_m, mask_[i]);
     const SO3 R_m = a.R * SO3::exp(Theta_m.head<3>());
-    const Vector6 F_m = lie::se3::dexp_inv_apply(-Theta_m, xi_m);
+    const Vector6 F_m = lie::small_angle::dexp_inv_apply(-Theta_m, xi_m);
     const Vector6 dLambda_m = P_.wrench_derivative(R_m, xi_m, Lambda_m);
     const Vector6 pose = Theta - (h / 6.0) * (F_a + 4.0 * F_m + F_b);
     const Vector6 wrench = (B.Lambda - A.Lambda) - (h / 6.0) * (A.dLambda + 4.0 * dLambda_m + B.dLambda);
@@ -173,20 +186,25 @@ class Collocation {
   /// Block-bidiagonal pattern: the columns of node j have the rows [first_row(j), last_row(j)]
   /// and the extra rows (path-length conditions); the extra columns are dense.
   Sparse pattern() const {
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(static_cast<std::size_t>(kState) * (kState * 2 + extra_) * N_ + kState * (kBaseRows + kTipRows) +
-              static_cast<std::size_t>(extra_) * size());
+    std::vector<int> outer(size() + 1), inner;
+    inner.reserve(static_cast<std::size_t>(kState) * (2 * kState + extra_) * N_ +
+                  static_cast<std::size_t>(extra_) * size());
+    auto rows = [&](int first, int last) {
+      for (int r = first; r <= last; ++r) inner.push_back(r);
+    };
     for (int j = 0; j < N_; ++j)
       for (int c = kState * j; c < kState * (j + 1); ++c) {
-        for (int r = first_row(j); r <= last_row(j); ++r) t.emplace_back(r, c, 1.0);
-        for (int r = kState * N_; r < size(); ++r) t.emplace_back(r, c, 1.0);
+        outer[c] = static_cast<int>(inner.size());
+        rows(first_row(j), last_row(j));
+        rows(kState * N_, size() - 1);
       }
-    for (int c = kState * N_; c < size(); ++c)
-      for (int r = 0; r < size(); ++r) t.emplace_back(r, c, 1.0);
-    Sparse J(size(), size());
-    J.setFromTriplets(t.begin(), t.end());
-    J.makeCompressed();
-    return J;
+    for (int c = kState * N_; c < size(); ++c) {
+      outer[c] = static_cast<int>(inner.size());
+      rows(0, size() - 1);
+    }
+    const int nnz = outer[size()] = static_cast<int>(inner.size());
+    const std::vector<double> ones(nnz, 1.0);
+    return Sparse(Eigen::Map<const Sparse>(size(), size(), nnz, outer.data(), inner.data(), ones.data()));
   }
 
   /// Forward differences node by node: a column of node j re-evaluates node j's data and the
@@ -197,7 +215,8 @@ class Collocation {
     for (int i = 0; i < N_; ++i) node_[i] = node(x, i);
     Lengths total{};
     for (int i = 0; i + 1 < N_; ++i) {
-      rows_[i] = interval(i, node_[i], node_[i + 1], extra_ ? &lengths_[i] : nullptr);
+      chart_[i] = chart(node_[i], node_[i + 1]);
+      rows_[i] = interval(i, node_[i], node_[i + 1], chart_[i], extra_ ? &lengths_[i] : nullptr);
       if (extra_)
         for (int k = 0; k < StaticProblem::kMaxActuators; ++k) total[k] += lengths_[i][k];
     }
@@ -216,17 +235,20 @@ class Collocation {
         xp[k] += kFdStep * std::max(1.0, std::abs(xj[k]));
         const double step = xp[k] - xj[k];  // the step actually taken
         const NodeData np = node_from(xp, j);
+        const bool wrench_column = k >= kFirstWrench;  // the poses, hence the charts, stay
         Lengths changed = total;
         if (j == 0)
           for (int r = 0; r < kBaseRows; ++r) *v++ = r == k ? 1.0 : 0.0;
         if (j >= 1) {  // interval j-1: node j is its right end
-          const Rows d = (interval(j - 1, node_[j - 1], np, extra_ ? &dl : nullptr) - rows_[j - 1]) / step;
+          const Vector6 Theta = wrench_column ? chart_[j - 1] : chart(node_[j - 1], np);
+          const Rows d = (interval(j - 1, node_[j - 1], np, Theta, extra_ ? &dl : nullptr) - rows_[j - 1]) / step;
           for (int r = 0; r < kState; ++r) *v++ = d[r];
           if (extra_)
             for (int a = 0; a < StaticProblem::kMaxActuators; ++a) changed[a] += dl[a] - lengths_[j - 1][a];
         }
         if (j + 1 < N_) {  // interval j: node j is its left end
-          const Rows d = (interval(j, np, node_[j + 1], extra_ ? &dl : nullptr) - rows_[j]) / step;
+          const Vector6 Theta = wrench_column ? chart_[j] : chart(np, node_[j + 1]);
+          const Rows d = (interval(j, np, node_[j + 1], Theta, extra_ ? &dl : nullptr) - rows_[j]) / step;
           for (int r = 0; r < kState; ++r) *v++ = d[r];
           if (extra_)
             for (int a = 0; a < StaticProblem::kMaxActuators; ++a) changed[a] += dl[a] - lengths_[j][a];
@@ -405,18 +427,24 @@ class Collocation {
   std::vector<bool> breakpoint_;              // per node: at a breakpoint (never 0 or L)
   std::vector<NodeData> node_;  // workspace: node data at the current x
   std::vector<Rows> rows_;      // workspace: interval rows at the current x
+  std::vector<Vector6> chart_;  // workspace: interval charts Theta at the current x
   std::vector<Lengths> lengths_;  // workspace: interval path-length quadratures at the current x
 };
 
 class Driver {
  public:
   Driver(const StaticProblem& problem, const KinsolCollocationOptions& options)
-      : C_(problem, options.nodes), options_(options), solver_(C_.pattern()) {
+      : C_(problem, options.nodes), options_(options),
+        solver_(C_.pattern(), false, KluOrder::natural) {  // block-banded in node order
     kinsol_.fnormtol = options.tol;
     kinsol_.scsteptol = options.step_tol;
     kinsol_.max_iterations = options.max_iterations;
     kinsol_.line_search = true;
-    kinsol_.max_setup_calls = 1;
+    // A Jacobian (finite differences and a KLU factorisation) at every third iteration: the
+    // gravity cantilever at N = 100 takes 5 iterations and 2 Jacobians, 2.2 ms, against 4 and 4,
+    // 3.6 ms with one per iteration (6 and 7 iterations, 2.24 and 2.42 ms, with one every 4th
+    // or 5th; bench_statics). The converged residual is held to the same tolerance.
+    kinsol_.max_setup_calls = 3;
   }
 
   /// One KINSOL run (line search) at a load factor, with at most max_iterations if > 0.

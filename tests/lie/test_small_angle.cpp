@@ -11,7 +11,7 @@
 
 // The small-angle kernels (lie/small_angle.hpp, used by the `variational` scheme) against the
 // general functions they replace: coefficients e, f, c, SE3::exp, SE3::log and
-// se3::dexp_inv_transpose_apply (themselves tested against long-double series in test_dexp.cpp
+// se3::dexp_inv_transpose_apply and se3::dexp_inv_apply (themselves tested against long-double series in test_dexp.cpp
 // and test_coefficients.cpp). Angles from 0 to 0.3 rad, dense around the branch points
 // kTinyAngle and kSmallAngle, random directions, translations of 1e-3..1. Tolerances: the
 // coefficients to 2 eps relative; group elements and vectors to 4 eps relative to their size
@@ -67,7 +67,7 @@ BOOST_AUTO_TEST_CASE(coefficients_match_the_general_functions) {
 BOOST_AUTO_TEST_CASE(exp_log_and_dexp_inv_transpose_match) {
   std::mt19937 rng(7u);
   std::normal_distribution<double> n;
-  double worst_exp = 0, worst_log = 0, worst_k = 0, worst_dt = 0;
+  double worst_exp = 0, worst_log = 0, worst_k = 0, worst_dt = 0, worst_di = 0;
   for (const Vector6& xi : twists()) {
     const SE3 a = sa::exp(xi), b = SE3::exp(xi);
     const double qa = (a.rotation().quaternion().coeffs() - b.rotation().quaternion().coeffs()).norm();
@@ -84,14 +84,17 @@ BOOST_AUTO_TEST_CASE(exp_log_and_dexp_inv_transpose_match) {
     const Vector6 da = sa::dexp_inv_transpose_apply(xi, lambda),
                   db = se3::dexp_inv_transpose_apply(xi, lambda);
     worst_dt = std::max(worst_dt, (da - db).norm() / db.norm());
+    const Vector6 ia = sa::dexp_inv_apply(xi, lambda), ib = se3::dexp_inv_apply(xi, lambda);
+    worst_di = std::max(worst_di, (ia - ib).norm() / ib.norm());
   }
   BOOST_TEST_MESSAGE("max relative error / eps: exp " << worst_exp / kEps << ", log "
                      << worst_log / kEps << ", log's e, f " << worst_k / kEps
-                     << ", dexp^-T " << worst_dt / kEps);
+                     << ", dexp^-T " << worst_dt / kEps << ", dexp^-1 " << worst_di / kEps);
   BOOST_TEST(worst_exp <= 4 * kEps);
   BOOST_TEST(worst_log <= 4 * kEps);
   BOOST_TEST(worst_k <= 4 * kEps);
   BOOST_TEST(worst_dt <= 4 * kEps);
+  BOOST_TEST(worst_di <= 4 * kEps);
 }
 
 // The dexp kernels with the short b, c, d1, d2 series (the staggered shooting march's inner loop)
@@ -123,5 +126,7 @@ BOOST_AUTO_TEST_CASE(large_angles_fall_back) {
   BOOST_TEST((sa::log(b) - b.log()).norm() == 0.0);
   const Vector6 lambda = Vector6::LinSpaced(6, -1.0, 2.0);
   BOOST_TEST((sa::dexp_inv_transpose_apply(xi, lambda) - se3::dexp_inv_transpose_apply(xi, lambda)).norm() <=
+             4 * kEps * lambda.norm());
+  BOOST_TEST((sa::dexp_inv_apply(xi, lambda) - se3::dexp_inv_apply(xi, lambda)).norm() <=
              4 * kEps * lambda.norm());
 }

@@ -4,10 +4,11 @@
 // 1e-3..1e-1). They compute the same quantities as SE3::exp, SE3::log and
 // se3::dexp_inv_transpose_apply, to rounding, but cheaper:
 //   - the coefficient functions c, e, f (coefficients.hpp) are short Taylor series in t^2
-//     (6-7 terms below kSmallAngle, 3-4 terms below kTinyAngle) instead of the 12-, 22- and
-//     50-term series the general functions need up to their switch points (1, 2, 4); the first
-//     dropped term is below 1e-17 relative at the bound (checked in tests/lie/test_small_angle.cpp
-//     against the general functions to 2 eps);
+//     (6-7 terms below kSmallAngle, 3-4 terms below kTinyAngle), taken from t^2 without the
+//     sqrt and inlined (the general functions have short branches of 6-8 terms below
+//     coefficients::kShortSwitch = 0.25 too, then 12-, 22- and 50-term series up to their switch
+//     points); the first dropped term is below 1e-17 relative at the bound (checked in
+//     tests/lie/test_small_angle.cpp against the general functions to 2 eps);
 //   - log uses atan(x)/x as a 9-term series in x^2 = tan^2(theta/2) instead of atan2, and no sqrt;
 //   - log_with_coefficients returns e and f of the segment's own angle, so a scheme that needs
 //     both log(G) and dexp^-T_{log G} evaluates them once.
@@ -88,6 +89,24 @@ inline double c(double t2) {
 [[gnu::always_inline]] inline Vector6 dexp_inv_transpose_apply(const Vector6& xi,
                                                                const Vector6& lambda) {
   return dexp_inv_transpose_apply(xi, lambda, ef(xi.head<3>().squaredNorm()));
+}
+
+/// se3::dexp_inv_apply with the coefficients of |xi.head<3>()| given: dexp^-1_xi y = [A^-1 y_w;
+/// C y_w + A^-1 y_v], A^-1 = I - W/2 + e W^2, C = -V/2 + e (W V + V W) + (w.v) f W^2.
+[[gnu::always_inline]] inline Vector6 dexp_inv_apply(const Vector6& xi, const Vector6& y,
+                                                     const EF& k) {
+  const Vector3 w = xi.head<3>(), v = xi.tail<3>();
+  const Vector3 yw = y.head<3>(), yv = y.tail<3>();
+  const Vector3 w_yw = w.cross(yw), v_yw = v.cross(yw);
+  const Vector3 top = yw - 0.5 * w_yw + k.e * w.cross(w_yw);
+  const Vector3 Ainv_yv = yv - 0.5 * w.cross(yv) + k.e * w.cross(w.cross(yv));
+  const Vector3 C_yw = -0.5 * v_yw + k.e * (w.cross(v_yw) + v.cross(w_yw)) + w.dot(v) * k.f * w.cross(w_yw);
+  return se3::join(top, C_yw + Ainv_yv);
+}
+
+/// se3::dexp_inv_apply(xi, y) (the chart ODE of Lie-group collocation: one interval's angle).
+[[gnu::always_inline]] inline Vector6 dexp_inv_apply(const Vector6& xi, const Vector6& y) {
+  return dexp_inv_apply(xi, y, ef(xi.head<3>().squaredNorm()));
 }
 
 /// The coefficients b, c, d1, d2 of dexp (coefficients.hpp) from t^2: 7-term series below

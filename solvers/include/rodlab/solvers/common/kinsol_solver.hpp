@@ -66,6 +66,13 @@ struct KinsolStats {
   double fnorm = 0.0;  ///< KINSOL's scaled L2 norm of the final residual, |f_scale .* F|_2
 };
 
+/// KLU's column order. `fill_reducing`: its default analysis (COLAMD in SUNLinSol_KLU, AMD in
+/// the kept solver). `natural`: the pattern's own order, for block-banded patterns (unknowns
+/// numbered node by node along the rod), whose fill stays in the band either way: the
+/// analysis that SUNLinSol_KLU repeats at every solve() is saved, and the factors are as sparse
+/// (kinsol statics, N = 100: 3.1 -> 2.6 ms per solve, docs/statics.md).
+enum class KluOrder { fill_reducing, natural };
+
 class KinsolSolver {
  public:
   using Vector = Eigen::VectorXd;
@@ -84,8 +91,9 @@ class KinsolSolver {
   /// numerically on the kept pivot order (a fresh factorisation when that looks
   /// ill-conditioned), and does not factorise a Jacobian whose values equal the last
   /// factorised one (kept_klu_solver.hpp). Without it, SUNDIALS' SUNLinSol_KLU, which
-  /// analyses and factorises afresh at the start of every solve().
-  explicit KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation = false);
+  /// analyses and factorises afresh at the start of every solve(). `order`: KLU's column order.
+  explicit KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation = false,
+                        KluOrder order = KluOrder::fill_reducing);
   ~KinsolSolver();
   /// A deep copy (allocates): its own context, vectors, matrix and linear solver, in the state
   /// of `other` (with keep_factorisation, KLU's analysis and kept factors), so that its solves
