@@ -43,7 +43,7 @@ constexpr OptionSpec kStudyTolOption{
     "--tol", "X",
     "recommend: the tip error to reach [m]; other studies: the solver tolerance "
     "(default: solver.tol)"};
-constexpr std::array<std::string_view, 2> kRefinements{"time", "joint"};
+constexpr std::array<std::string_view, 3> kRefinements{"time", "joint", "grid"};
 constexpr std::array<OptionSpec, 14> kSweepOptions{
     OptionSpec{"--schemes", "A,B,...",
                "schemes to compare, comma-separated (one problem class); default: all of the problem class"},
@@ -51,9 +51,11 @@ constexpr std::array<OptionSpec, 14> kSweepOptions{
                "node counts, comma-separated integers >= 2; control: one N (default 20)"},
     OptionSpec{"--dt", "X1,X2,...", "time steps > 0, comma-separated (dynamics studies)"},
     OptionSpec{"--t-end", "T", "length of the dynamics runs [s]; default: dynamics.t_end"},
-    OptionSpec{"--refine", "time|joint",
-               "dynamics: refine dt at each N (time, default), or N and dt together, dt ~ ds, "
-               "against ida at a finer N (joint)"},
+    OptionSpec{"--refine", "time|joint|grid",
+               "dynamics: refine dt at each N against ida at that N (time, default: the time "
+               "error), N and dt together, dt ~ ds (joint), or every dt at every N (grid), "
+               "both against ida at a 4x finer N (the error of space and time; recommend then "
+               "compares the largest tip error over the run)"},
     OptionSpec{"--reference", "NAME", "reference solution: kinsol, ida or chebyshev"},
     kStudyTolOption,
     OptionSpec{"--budget-ms", "X", "recommend: time budget per run in milliseconds, > 0"},
@@ -141,9 +143,9 @@ void check_kind_options(OptionReader& reader, const std::string& kind) {
     reader.problem("--repeats: only work-precision and recommend time their runs");
   if (a.has("--refine") && kind == "stability")
     reader.problem("--refine: a stability study compares no solutions");
-  if (reader.choice("--refine", kRefinements) == "joint" && a.value("--reference") &&
-      *a.value("--reference") != "ida")
-    reader.problem("--refine joint: the reference is ida at a finer N (got --reference " +
+  if (const auto refine = reader.choice("--refine", kRefinements);
+      refine && *refine != "time" && a.value("--reference") && *a.value("--reference") != "ida")
+    reader.problem("--refine " + *refine + ": the reference is ida at a finer N (got --reference " +
                    *a.value("--reference") + ")");
   if (a.has("--moduli") && kind != "stability")
     reader.problem("--moduli: only `rodlab study stability` varies Young's modulus");
@@ -222,7 +224,10 @@ void print_pareto(const study::Sweep& sweep, const std::vector<bool>& pareto,
 /// recommendation.json; true when a run meets the target.
 bool recommend_and_write(const Json& wp, bool reused, const study::Settings& settings,
                          const std::string& dir, double target, std::optional<double> budget_ms) {
-  const auto rec = study::recommend(wp["rows"], target, budget_ms);
+  const auto rec = study::recommend(wp["rows"], target, budget_ms,
+                                    settings.refine == study::Refinement::grid
+                                        ? study::ErrorMeasure::over_the_run
+                                        : study::ErrorMeasure::at_end);
   const std::string budget_text =
       budget_ms ? " within " + io::format_number(*budget_ms) + " ms per run" : std::string();
   std::cout << "\nrecommendation for a tip error <= " << io::format_number(target) << " m"
@@ -393,9 +398,8 @@ int run(const Invocation& inv) {
                      std::string(solvers::to_string(settings.problem)) + " scheme to study");
   if (nodes) settings.nodes = *nodes;
   if (dts) settings.dts = *dts;
-  if (inv.args.value("--refine") == "joint") {
-    settings.refine = study::Refinement::joint;
-  }
+  if (inv.args.value("--refine") == "joint") settings.refine = study::Refinement::joint;
+  if (inv.args.value("--refine") == "grid") settings.refine = study::Refinement::grid;
   if (moduli) settings.moduli = *moduli;
   const bool recommend = kind == "recommend";
   settings.tol = (!recommend && tol) ? *tol : scene.solver.tol;

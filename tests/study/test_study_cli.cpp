@@ -106,6 +106,8 @@ BOOST_AUTO_TEST_CASE(bad_input_exits_2_and_writes_nothing) {
                    {"--dt", "joint"});
   expect_bad_input(box, "study stability " + dyn + " --refine joint --out s",
                    {"--refine", "stability"});
+  expect_bad_input(box, "study recommend " + dyn + " --refine grid --reference kinsol --tol 1 --out s",
+                   {"--refine grid", "ida"});
 }
 
 // Reference: design orders 2 (explicit midpoint RKMK) and 4 (RK4 Munthe-Kaas); kinsol at N = 324.
@@ -170,6 +172,82 @@ BOOST_AUTO_TEST_CASE(joint_refinement_reports_the_orders_in_space) {
       const double expected = 0.01 * 5.0 / (row["nodes"].get<int>() - 1);
       BOOST_TEST(std::abs(row["dt"].get<double>() - expected) < 1e-12 * expected, row.dump());
     }
+}
+
+/// The largest tip distance over the output times two dynamic results share (within 1e-12 s).
+double max_shared_tip_distance(const Json& a, const Json& b) {
+  const auto& ta = a["series"]["t"];
+  const auto& tb = b["series"]["t"];
+  double worst = 0.0;
+  int shared = 0;
+  for (std::size_t i = 0; i < ta.size(); ++i)
+    for (std::size_t j = 0; j < tb.size(); ++j)
+      if (std::abs(ta[i].get<double>() - tb[j].get<double>()) <= 1e-12) {
+        double d2 = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          const double d = a["series"]["tip_position"][i][k].get<double>() -
+                           b["series"]["tip_position"][j][k].get<double>();
+          d2 += d * d;
+        }
+        worst = std::max(worst, std::sqrt(d2));
+        ++shared;
+      }
+  BOOST_TEST(shared >= 5);
+  return worst;
+}
+
+// --refine grid: every dt at every N against ida at 4 (N_finest - 1) + 1 nodes, one reference per
+// step. Reference for the check: the same two runs done again by `rodlab dynamic` (the scheme at
+// N = 6 and ida at N = 41, the same step and tolerances), their largest shared tip distance
+// computed here; it must equal the study's max_error (same runs, same arithmetic: 1e-12
+// relative), and recommend must compare that error (over the run), not the one at t_end. The
+// explicit scheme's steps are capped at its stability limit (dt auto), and no order is fitted.
+BOOST_AUTO_TEST_CASE(grid_refinement_measures_space_and_time_together) {
+  Sandbox box;
+  const Run r = box.run("study recommend " + quote(kDynamicScene) +
+                        " --refine grid --dt 0.01 --t-end 0.05 --nodes 6,11 --repeats 1"
+                        " --schemes implicit-midpoint,variational --tol 1 --out g");
+  BOOST_TEST_CONTEXT(r.out << r.err) { BOOST_REQUIRE(r.status == 0); }
+  const Json study = Json::parse(read(box.work / "g" / "study.json"));
+  BOOST_TEST(study["settings"]["refine"] == "grid");
+  BOOST_TEST(study["reference"]["nodes"] == 41);
+  BOOST_TEST(study["orders"].empty());
+  double coarse_error = -1.0, largest = 0.0;
+  std::set<double> reference_steps, study_steps;
+  for (const auto& row : study["rows"]) {
+    if (row["role"] == "reference") {
+      BOOST_TEST(row["nodes"] == 41);
+      reference_steps.insert(row["dt"].get<double>());
+      continue;
+    }
+    study_steps.insert(row["dt"].get<double>());
+    BOOST_REQUIRE(row["max_error"].is_number());
+    largest = std::max(largest, row["max_error"].get<double>());
+    if (row["scheme"] == "variational") BOOST_TEST(row["dt"].get<double>() < 1e-3, row.dump());
+    if (row["scheme"] == "implicit-midpoint" && row["nodes"] == 6)
+      coarse_error = row["max_error"].get<double>();
+  }
+  BOOST_TEST(reference_steps == study_steps);  // one reference per step, no more
+  BOOST_TEST(reference_steps.size() >= 2);       // 0.01 s and variational's stable step(s)
+  BOOST_REQUIRE(coarse_error > 0.0);
+  const std::string dyn = "dynamic " + quote(kDynamicScene) +
+                          " --dt 0.01 --t-end 0.05 --output-every 1 --tol 1e-10";
+  const Run a = box.run(dyn + " --scheme implicit-midpoint --nodes 6 --out a.json");
+  const Run b = box.run(dyn + " --scheme ida --nodes 41 --out b.json");
+  BOOST_REQUIRE(a.status == 0);
+  BOOST_REQUIRE(b.status == 0);
+  const double recomputed = max_shared_tip_distance(Json::parse(read(box.work / "a.json")),
+                                                    Json::parse(read(box.work / "b.json")));
+  BOOST_TEST(std::abs(recomputed - coarse_error) <= 1e-12 * coarse_error,
+             recomputed << " against the study's " << coarse_error);
+  const Json rec = Json::parse(read(box.work / "g" / "recommendation.json"));
+  BOOST_REQUIRE(rec["most_accurate"].is_object());
+  bool is_a_max_error = false;
+  for (const auto& row : study["rows"])
+    if (row["role"] == "study" && row["max_error"] == rec["recommendation"]["error"])
+      is_a_max_error = true;
+  BOOST_TEST(is_a_max_error, rec.dump());
+  BOOST_TEST(rec["recommendation"]["error"].get<double>() <= largest);
 }
 
 // The recommended run must meet the tolerance when solved again by `rodlab static`, measured

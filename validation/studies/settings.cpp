@@ -7,6 +7,11 @@
 #include <fstream>
 #include <sstream>
 
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
 #include "rodlab/io/atomic_file.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
@@ -53,8 +58,25 @@ std::vector<double> joint_steps(const Settings& settings, const solvers::SchemeI
   return steps;
 }
 
+std::vector<double> grid_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
+                               int nodes) {
+  std::vector<double> steps;
+  const double limit =
+      scheme.implicit ? std::numeric_limits<double>::infinity()
+                      : solvers::dynamics::auto_time_step(
+                            solvers::dynamics::DynamicProblem::from_scene(settings.scene),
+                            scheme.name, nodes);
+  for (double dt : study_steps(settings, scheme, nodes)) {
+    dt = std::min(dt, limit);
+    steps.push_back(settings.t_end / std::ceil(settings.t_end / dt * (1.0 - 1e-12)));
+  }
+  std::sort(steps.begin(), steps.end(), std::greater<>());
+  steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
+  return steps;
+}
+
 std::string_view to_string(Refinement refine) {
-  return refine == Refinement::joint ? "joint" : "time";
+  return refine == Refinement::joint ? "joint" : refine == Refinement::grid ? "grid" : "time";
 }
 
 std::vector<solvers::SchemeInfo> schemes_of(solvers::Problem problem) {

@@ -16,9 +16,11 @@ namespace rodlab::validation::study {
 
 using Json = nlohmann::json;
 
-/// How a dynamics convergence study refines: the step at each N (time), or N and the step
-/// together with dt proportional to ds, against ida at a finer N (joint).
-enum class Refinement { time, joint };
+/// How a dynamics study refines and what its error is: the step at each N against ida at the
+/// same N (time: the time error alone); N and the step together with dt proportional to ds,
+/// against ida at a finer N (joint); or every step at every N against ida at a finer N (grid:
+/// the error of space and time together, for work-precision and recommend).
+enum class Refinement { time, joint, grid };
 
 struct Settings {
   std::string scene_path;
@@ -50,7 +52,12 @@ std::vector<double> study_steps(const Settings& settings, const solvers::SchemeI
 /// never above its limit at that N.
 std::vector<double> joint_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
                                 const std::vector<int>& nodes);
-/// "time" or "joint".
+/// Grid refinement: the steps of `scheme` at N nodes, study_steps made exact divisors of t_end,
+/// and for a scheme whose auto step is a stability limit (variational) none above that limit
+/// (descending, without repeats).
+std::vector<double> grid_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
+                               int nodes);
+/// "time", "joint" or "grid".
 std::string_view to_string(Refinement refine);
 /// The schemes of a problem class, in catalogue order.
 std::vector<solvers::SchemeInfo> schemes_of(solvers::Problem problem);

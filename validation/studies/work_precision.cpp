@@ -51,17 +51,19 @@ Json work_precision_json(const Sweep& sweep, const std::vector<bool>& pareto,
   return j;
 }
 
-Recommendation recommend(const Json& rows, double tol, std::optional<double> budget_ms) {
+Recommendation recommend(const Json& rows, double tol, std::optional<double> budget_ms,
+                         ErrorMeasure measure) {
   Recommendation rec;
+  const char* field = measure == ErrorMeasure::over_the_run ? "max_error" : "error";
   for (const auto& row : rows) {
     if (row.value("role", "") != "study" || !row.value("converged", false) ||
-        !row["error"].is_number())
+        !row.contains(field) || !row[field].is_number())
       continue;
     Candidate c;
     c.scheme = row["scheme"].get<std::string>();
     c.nodes = row["nodes"].get<int>();
     if (row["dt"].is_number()) c.dt = row["dt"].get<double>();
-    c.error = row["error"].get<double>();
+    c.error = row[field].get<double>();
     c.wall_time_s = row["wall_time_s"].get<double>();
     c.repeats = row.value("repeats", 1);
     ++rec.candidates;

@@ -36,7 +36,13 @@ struct Recommendation {
   int candidates = 0;                            ///< converged study runs considered
 };
 
+/// Which error of a row recommend() compares with tol: the tip error at t_end (statics, and the
+/// per-N time refinement), or its largest value over the run (`max_error`: the grid
+/// refinement, whose error is that of space and time together).
+enum class ErrorMeasure { at_end, over_the_run };
+
 /// From the rows of a work-precision study.json.
-Recommendation recommend(const Json& rows, double tol, std::optional<double> budget_ms);
+Recommendation recommend(const Json& rows, double tol, std::optional<double> budget_ms,
+                         ErrorMeasure measure = ErrorMeasure::at_end);
 
 }  // namespace rodlab::validation::study
