@@ -70,7 +70,7 @@ struct KinsolStats {
 /// the kept solver). `natural`: the pattern's own order, for block-banded patterns (unknowns
 /// numbered node by node along the rod), whose fill stays in the band either way: the
 /// analysis that SUNLinSol_KLU repeats at every solve() is saved, and the factors are as sparse
-/// (kinsol statics, N = 100: 3.1 -> 2.6 ms per solve, docs/statics.md).
+/// (kinsol statics, N = 100: 3.3 -> 2.7 ms per solve, docs/statics.md "kinsol").
 enum class KluOrder { fill_reducing, natural };
 
 class KinsolSolver {
