@@ -37,12 +37,17 @@ def load_result(path):
     return np.array(r["series"]["t"]), np.array(r["series"]["tip_position"]), r
 
 
+def pinned(command):
+    """The command pinned to core 1 (timings on one core, away from core 0's interrupts) where
+    this process may use it, else as it is."""
+    return ["taskset", "-c", "1", *command] if 1 in os.sched_getaffinity(0) else list(command)
+
+
 def run_rodlab(rodlab, out, viscosity, *args):
     """One `rodlab dynamic` run of the scene on core 1; returns the result (t, tip, json)."""
     extra = ["--set", f"rod.material.viscosity={viscosity:g}"] if viscosity else []
-    subprocess.run(["taskset", "-c", "1", rodlab, "dynamic", SCENE, "--t-end", str(T_END),
-                    "--quiet", "--out", out, *extra, *map(str, args)], check=True,
-                   capture_output=True)
+    subprocess.run(pinned([rodlab, "dynamic", SCENE, "--t-end", str(T_END), "--quiet", "--out",
+                           out, *extra, *map(str, args)]), check=True, capture_output=True)
     return load_result(out)
 
 

@@ -103,8 +103,8 @@ def run(binary, dt, viscosity, sos_tol):
     env = dict(os.environ, TILL_dt=repr(dt), TILL_Bs=repr(viscosity * A),
                TILL_Be=repr(3 * viscosity * A), TILL_Bb=repr(3 * viscosity * I),
                TILL_Bt=repr(viscosity * 2 * I), TILL_SOS_TOL=repr(sos_tol))
-    p = subprocess.run(["taskset", "-c", "1", binary], capture_output=True, text=True,
-                       timeout=600, env=env)
+    p = subprocess.run(common.pinned([binary]), capture_output=True, text=True, timeout=600,
+                       env=env)
     lines = p.stdout.split("\n")
     if p.returncode != 0 or not lines[0].startswith("wall "):
         return None
