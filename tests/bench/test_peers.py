@@ -108,6 +108,26 @@ def test_rows_round_trip_through_the_csv(tmp_path):
     assert back[0]["nodes"] == 10 and not os.path.exists(path + ".tmp")
 
 
+def test_the_peer_scripts_skip_without_their_peer(tmp_path):
+    """Without a checkout (and no installed package) each peer script says so and exits 0,
+    writing nothing: CI machines have neither peer."""
+    import subprocess
+    env = dict(os.environ, PYTHONPATH="", TILL_EXAMPLES="", PYELASTICA="")
+    for script, option in (("till_cantilever.py", "--till"), ("pyelastica_cantilever.py", "--pyelastica")):
+        try:  # an installed elastica package would be used: nothing to check then
+            if script.startswith("pyelastica"):
+                import elastica  # noqa: F401
+                continue
+        except ImportError:
+            pass
+        p = subprocess.run([sys.executable, os.path.join(SOURCE, "bench", "peers", script), option,
+                            str(tmp_path / "absent"), "--work", str(tmp_path / "work")],
+                           capture_output=True, text=True, env=env, timeout=120)
+        assert p.returncode == 0, p.stderr
+        assert "skipped" in p.stdout, p.stdout
+        assert not (tmp_path / "work").exists()
+
+
 @pytest.mark.skipif(not os.environ.get("RODLAB_BINARY"), reason="needs the rodlab binary")
 def test_the_scripts_contract_with_the_command_line(tmp_path):
     """The fields the scripts read (t, tip_position, dt, steps, wall_time_s) and the viscosity
