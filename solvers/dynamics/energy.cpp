@@ -37,16 +37,9 @@ double gravity_energy(const DynamicProblem& problem, std::span<const SE3> g, dou
   if (w.isZero()) return 0.0;
   const SE3& base = problem.base();
   const auto& model = problem.model();
-  // A straight reference (no rest curvature or twist): exp(s xi*) = (I, s nu*), so its centreline
-  // is the base pose applied to s nu*, the same arithmetic as reference_pose without an SE(3)
-  // exponential per node and output (12 % of a short variational run that records every step).
-  const bool straight = model.xi_star().head<3>().isZero();
-  const Vector3 nu_star = model.xi_star().tail<3>();
   return trapezoid(g.size(), ds, [&](std::size_t j) {
     const double s = ds * static_cast<double>(j);
-    const Vector3 p_ref = straight ? Vector3(base.rotation() * Vector3(s * nu_star) + base.translation())
-                                   : rod::reference_pose(model, base, s).translation();
-    return -w.dot(g[j].translation() - p_ref);
+    return -w.dot(g[j].translation() - rod::reference_position(model, base, s));
   });
 }
 

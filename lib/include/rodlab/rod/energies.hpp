@@ -26,4 +26,14 @@ double integrate_trapezoid(std::span<const double> f, double ds);
 /// Reference configuration g*(s) = g0 exp(s xi*) (constant xi*, (2.78) is exact then).
 lie::SE3 reference_pose(const RodModel& model, const lie::SE3& base, double s);
 
+/// Its centreline p*(s), reference_pose(model, base, s).translation() to the last bit. For a
+/// straight reference (no rest curvature or twist) exp(s xi*) = (I, s nu*), and p* = p0 + R0
+/// s nu* without an SE(3) exponential: the gravity energy evaluates it at every node and
+/// output (12 % of a short variational run that records every step).
+inline Vector3 reference_position(const RodModel& model, const lie::SE3& base, double s) {
+  const Vector6 x = s * model.xi_star();
+  if (!x.head<3>().isZero()) return reference_pose(model, base, s).translation();
+  return base.translation() + base.rotation() * Vector3(x.tail<3>());
+}
+
 }  // namespace rodlab::rod
