@@ -19,7 +19,35 @@ struct Plan {
   std::vector<std::string> roles;
   std::vector<int> reference_of;  ///< index of the spec a spec is compared with; -1: none
   Json reference;
+
+  /// Appends a run; returns its index.
+  int add(RunSpec spec, const char* role, int reference) {
+    specs.push_back(std::move(spec));
+    roles.emplace_back(role);
+    reference_of.push_back(reference);
+    return static_cast<int>(specs.size()) - 1;
+  }
 };
+
+/// study.json's `reference` for a reference solved by one scheme at one N.
+Json scheme_reference(const std::string& scheme, int nodes, double tol,
+                      const std::string& detail = "") {
+  return {{"kind", "scheme"},
+          {"scheme", scheme},
+          {"nodes", nodes},
+          {"tol", tol},
+          {"description", scheme + " at N = " + std::to_string(nodes) + ", tol " +
+                              io::format_number(tol) + detail}};
+}
+
+/// Joint and grid refinement's reference: ida at 4 (N_finest - 1) + 1 nodes, tol min(tol, 1e-10).
+struct FineIda {
+  int nodes;
+  double tol;
+};
+FineIda fine_ida(const Settings& s, const std::vector<int>& nodes) {
+  return {4 * (*std::max_element(nodes.begin(), nodes.end()) - 1) + 1, std::min(s.tol, 1e-10)};
+}
 
 Plan plan_statics(const Settings& s) {
   Plan plan;
@@ -28,22 +56,12 @@ Plan plan_statics(const Settings& s) {
   const std::string ref = s.reference.value_or("kinsol");
   const int ref_nodes = ref == "chebyshev" ? std::max(2 * finest, 48) : std::max(4 * finest, 200);
   const double ref_tol = std::min(s.tol, 1e-12);
-  plan.specs.push_back({ref, Problem::statics, ref_nodes, 0.0, 0.0, ref_tol, 1, false});
-  plan.roles.push_back("reference");
-  plan.reference_of.push_back(-1);
-  plan.reference = {{"kind", "scheme"},
-                    {"scheme", ref},
-                    {"nodes", ref_nodes},
-                    {"tol", ref_tol},
-                    {"description", ref + " at N = " + std::to_string(ref_nodes) + ", tol " +
-                                        io::format_number(ref_tol)}};
+  plan.add({ref, Problem::statics, ref_nodes, 0.0, 0.0, ref_tol, 1, false}, "reference", -1);
+  plan.reference = scheme_reference(ref, ref_nodes, ref_tol);
   for (const auto& scheme : s.schemes)
-    for (const int n : nodes) {
-      plan.specs.push_back(
-          {std::string(scheme.name), Problem::statics, n, 0.0, 0.0, s.tol, s.repeats, false});
-      plan.roles.push_back("study");
-      plan.reference_of.push_back(0);
-    }
+    for (const int n : nodes)
+      plan.add({std::string(scheme.name), Problem::statics, n, 0.0, 0.0, s.tol, s.repeats, false},
+               "study", 0);
   return plan;
 }
 
@@ -56,23 +74,19 @@ Plan plan_dynamics(const Settings& s) {
       double finest = std::numeric_limits<double>::infinity();
       for (const auto& scheme : s.schemes)
         for (const double dt : study_steps(s, scheme, n)) finest = std::min(finest, dt);
-      ref_index = static_cast<int>(plan.specs.size());
-      plan.specs.push_back({"ida", Problem::dynamics, n, finest, s.t_end, std::min(s.tol, 1e-10),
-                            1, true});
-      plan.roles.push_back("reference");
-      plan.reference_of.push_back(-1);
+      ref_index = plan.add(
+          {"ida", Problem::dynamics, n, finest, s.t_end, std::min(s.tol, 1e-10), 1, true},
+          "reference", -1);
     }
     for (const auto& scheme : s.schemes) {
       auto steps = study_steps(s, scheme, n);
       std::sort(steps.begin(), steps.end(), std::greater<>());
       steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
       const int first = static_cast<int>(plan.specs.size());
-      for (const double dt : steps) {
-        plan.specs.push_back({std::string(scheme.name), Problem::dynamics, n, dt, s.t_end, s.tol,
-                              s.repeats, true});
-        plan.roles.push_back("study");
-        plan.reference_of.push_back(ref_index);
-      }
+      for (const double dt : steps)
+        plan.add({std::string(scheme.name), Problem::dynamics, n, dt, s.t_end, s.tol, s.repeats,
+                  true},
+                 "study", ref_index);
       if (!use_ida) {  // Richardson: the finest step of the same scheme and N
         const int last = static_cast<int>(plan.specs.size()) - 1;
         plan.roles[last] = "reference";
@@ -101,8 +115,7 @@ Plan plan_dynamics_joint(const Settings& s) {
   Plan plan;
   auto nodes = study_nodes(s);
   std::sort(nodes.begin(), nodes.end());
-  const int ref_nodes = 4 * (nodes.back() - 1) + 1;
-  const double ref_tol = std::min(s.tol, 1e-10);
+  const FineIda ref = fine_ida(s, nodes);
   std::vector<std::vector<double>> steps;
   double coarsest = 0.0;
   for (const auto& scheme : s.schemes) {
@@ -110,24 +123,16 @@ Plan plan_dynamics_joint(const Settings& s) {
     coarsest = std::max(coarsest, *std::max_element(steps.back().begin(), steps.back().end()));
   }
   // the reference's output step: the coarsest run's (ida's cost grows with its output count)
-  plan.specs.push_back({"ida", Problem::dynamics, ref_nodes, coarsest, s.t_end, ref_tol, 1, true});
-  plan.roles.push_back("reference");
-  plan.reference_of.push_back(-1);
+  plan.add({"ida", Problem::dynamics, ref.nodes, coarsest, s.t_end, ref.tol, 1, true},
+           "reference", -1);
   for (std::size_t k = 0; k < s.schemes.size(); ++k)
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      plan.specs.push_back({std::string(s.schemes[k].name), Problem::dynamics, nodes[i],
-                            steps[k][i], s.t_end, s.tol, s.repeats, true});
-      plan.roles.push_back("study");
-      plan.reference_of.push_back(0);
-    }
-  plan.reference = {{"kind", "scheme"},
-                    {"scheme", "ida"},
-                    {"nodes", ref_nodes},
-                    {"tol", ref_tol},
-                    {"description", "ida at N = " + std::to_string(ref_nodes) + ", tol " +
-                                        io::format_number(ref_tol) +
-                                        ", output at the coarsest step; N and dt refined "
-                                        "together (dt proportional to ds)"}};
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      plan.add({std::string(s.schemes[k].name), Problem::dynamics, nodes[i], steps[k][i], s.t_end,
+                s.tol, s.repeats, true},
+               "study", 0);
+  plan.reference = scheme_reference("ida", ref.nodes, ref.tol,
+                                    ", output at the coarsest step; N and dt refined together "
+                                    "(dt proportional to ds)");
   return plan;
 }
 
@@ -141,31 +146,25 @@ Plan plan_dynamics_grid(const Settings& s) {
   Plan plan;
   auto nodes = study_nodes(s);
   std::sort(nodes.begin(), nodes.end());
-  const int ref_nodes = 4 * (nodes.back() - 1) + 1;
-  const double ref_tol = std::min(s.tol, 1e-10);
+  const FineIda ref = fine_ida(s, nodes);
   std::map<double, int> reference_at;  // step -> its reference row
   for (const auto& scheme : s.schemes)
     for (const int n : nodes)
       for (const double dt : grid_steps(s, scheme, n)) {
-        auto [it, added] = reference_at.emplace(dt, static_cast<int>(plan.specs.size()));
-        if (added) {
-          plan.specs.push_back({"ida", Problem::dynamics, ref_nodes, dt, s.t_end, ref_tol, 1, true});
-          plan.roles.push_back("reference");
-          plan.reference_of.push_back(-1);
-        }
-        plan.specs.push_back({std::string(scheme.name), Problem::dynamics, n, dt, s.t_end, s.tol,
-                              s.repeats, true});
-        plan.roles.push_back("study");
-        plan.reference_of.push_back(it->second);
+        auto it = reference_at.find(dt);
+        if (it == reference_at.end())
+          it = reference_at
+                   .emplace(dt, plan.add({"ida", Problem::dynamics, ref.nodes, dt, s.t_end,
+                                          ref.tol, 1, true},
+                                         "reference", -1))
+                   .first;
+        plan.add({std::string(scheme.name), Problem::dynamics, n, dt, s.t_end, s.tol, s.repeats,
+                  true},
+                 "study", it->second);
       }
-  plan.reference = {{"kind", "scheme"},
-                    {"scheme", "ida"},
-                    {"nodes", ref_nodes},
-                    {"tol", ref_tol},
-                    {"description", "ida at N = " + std::to_string(ref_nodes) + ", tol " +
-                                        io::format_number(ref_tol) +
-                                        ", output at each run's step; every dt at every N (the "
-                                        "error of space and time together)"}};
+  plan.reference = scheme_reference("ida", ref.nodes, ref.tol,
+                                    ", output at each run's step; every dt at every N (the error "
+                                    "of space and time together)");
   return plan;
 }
 

@@ -37,39 +37,41 @@ std::vector<double> study_steps(const Settings& settings, const solvers::SchemeI
   return {dt, dt / 2, dt / 4, dt / 8};
 }
 
+namespace {
+
+/// Equal steps that end at t_end, none longer than dt (what a run uses, so output times nest).
+double equal_step(const Settings& settings, double dt) {
+  return settings.t_end / std::ceil(settings.t_end / dt * (1.0 - 1e-12));
+}
+
+/// The longest step `scheme` may take at N nodes: its auto step for an explicit scheme (a
+/// stability limit), none for an implicit one.
+double step_limit(const Settings& settings, const solvers::SchemeInfo& scheme, int nodes) {
+  if (scheme.implicit) return std::numeric_limits<double>::infinity();
+  return solvers::dynamics::auto_time_step(
+      solvers::dynamics::DynamicProblem::from_scene(settings.scene), scheme.name, nodes);
+}
+
+}  // namespace
+
 std::vector<double> joint_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
                                 const std::vector<int>& nodes) {
-  const auto problem = solvers::dynamics::DynamicProblem::from_scene(settings.scene);
-  const bool explicit_scheme = !scheme.implicit;  // its auto step is its stability limit
   const double L = settings.scene.rod.length;
   const double ds0 = L / (nodes.front() - 1);
-  const double dt0 = settings.dts.empty()
-                         ? solvers::dynamics::auto_time_step(problem, scheme.name, nodes.front())
-                         : settings.dts.front();
+  const double dt0 = study_steps(settings, scheme, nodes.front()).front();  // --dt's first, or auto
   std::vector<double> steps;
-  for (const int n : nodes) {
-    double dt = dt0 * (L / (n - 1)) / ds0;
-    if (explicit_scheme)
-      dt = std::min(dt, solvers::dynamics::auto_time_step(problem, scheme.name, n));
-    // equal steps that end at t_end (what the run uses, so the output times nest)
-    dt = settings.t_end / std::ceil(settings.t_end / dt * (1.0 - 1e-12));
-    steps.push_back(dt);
-  }
+  for (const int n : nodes)
+    steps.push_back(equal_step(settings, std::min(dt0 * (L / (n - 1)) / ds0,
+                                                  step_limit(settings, scheme, n))));
   return steps;
 }
 
 std::vector<double> grid_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
                                int nodes) {
   std::vector<double> steps;
-  const double limit =
-      scheme.implicit ? std::numeric_limits<double>::infinity()
-                      : solvers::dynamics::auto_time_step(
-                            solvers::dynamics::DynamicProblem::from_scene(settings.scene),
-                            scheme.name, nodes);
-  for (double dt : study_steps(settings, scheme, nodes)) {
-    dt = std::min(dt, limit);
-    steps.push_back(settings.t_end / std::ceil(settings.t_end / dt * (1.0 - 1e-12)));
-  }
+  const double limit = step_limit(settings, scheme, nodes);
+  for (const double dt : study_steps(settings, scheme, nodes))
+    steps.push_back(equal_step(settings, std::min(dt, limit)));
   std::sort(steps.begin(), steps.end(), std::greater<>());
   steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
   return steps;
