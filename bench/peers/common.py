@@ -17,6 +17,7 @@ on this scene), the largest of the three components.
 import csv
 import json
 import os
+import statistics
 import subprocess
 
 import numpy as np
@@ -24,6 +25,7 @@ import numpy as np
 SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENE = os.path.join(SOURCE, "scenes", "cantilever-gravity.yaml")
 T_END = 0.5
+ROD_LENGTH = 0.1  # [m]; a larger tip error means the run blew up
 DEFAULT_WORK = os.path.join(SOURCE, "out", "peers")
 DEFAULT_RODLAB = os.path.join(SOURCE, "build", "bin", "rodlab")
 
@@ -72,6 +74,35 @@ def tip_error(t, x, ref):
     keep = (t > 0) & (t <= T_END + 1e-12)
     return max(np.abs(x[keep, k] - np.interp(t[keep], t_ref, x_ref[:, k])).max()
                for k in range(3))
+
+
+def measure(run, repeats, ref):
+    """Times one configuration: `run()` returns (wall [s], t, tip, steps, dt [s]), or a string
+    saying why the code gave up. Returns the point's measured fields (median wall over
+    `repeats` runs, steps, dt, max tip error), or why it has none: the code gave up, or the run
+    blew up (a non-finite tip, or a tip error above the rod's length)."""
+    walls = []
+    for _ in range(repeats):
+        out = run()
+        if isinstance(out, str):
+            return out
+        wall, t, x, steps, dt = out
+        error = tip_error(t, x, ref) if np.isfinite(x).all() else np.inf
+        if not error < ROD_LENGTH:
+            return f"blew up (tip error {error:.3g} m)"
+        walls.append(wall)
+    return dict(dt_s=dt, steps=steps, max_tip_error_m=error,
+                wall_ms=statistics.median(walls) * 1e3)
+
+
+def add_point(rows, label, code, configuration, nodes, measured):
+    """Appends a measured point to rows (or says why there is none) and prints it."""
+    if isinstance(measured, str):
+        print(f"{label}: no point: {measured}", flush=True)
+        return
+    rows.append(dict(code=code, configuration=configuration, nodes=nodes, **measured))
+    print(f"{label}: dt {measured['dt_s']:.4g} s, {measured['steps']} steps, max tip error "
+          f"{measured['max_tip_error_m']:.3e} m, {measured['wall_ms']:.2f} ms", flush=True)
 
 
 FIELDS = ["code", "configuration", "nodes", "dt_s", "steps", "max_tip_error_m", "wall_ms"]

@@ -33,7 +33,6 @@ import contextlib
 import importlib
 import io
 import os
-import statistics
 import sys
 import tempfile
 from time import perf_counter
@@ -42,7 +41,7 @@ import numpy as np
 
 import common
 
-L, RADIUS, E, G, RHO = 0.1, 0.005, 1.0e6, 0.33e6, 1000.0
+L, RADIUS, E, G, RHO = common.ROD_LENGTH, 0.005, 1.0e6, 0.33e6, 1000.0
 
 
 def import_elastica(path):
@@ -62,7 +61,8 @@ def import_elastica(path):
 
 
 def simulate(ea, n_elements, dt):
-    """One run; returns (wall [s], t, tip) with t the sample times after each step."""
+    """One run: (wall [s], t, tip, steps, dt) for common.measure, the samples at t = 0 and after
+    every step."""
 
     class Cantilever(ea.BaseSystemCollection, ea.Constraints, ea.Forcing, ea.CallBacks):
         pass
@@ -92,7 +92,7 @@ def simulate(ea, n_elements, dt):
         ea.integrate(ea.PositionVerlet(), sim, common.T_END, steps, progress_bar=False)
         wall = perf_counter() - start
     data = np.array(samples)
-    return wall, data[:, 0], data[:, 1:4]
+    return wall, data[:, 0], data[:, 1:4], steps, dt
 
 
 def main():
@@ -114,25 +114,10 @@ def main():
     ref = common.reference(a.rodlab, a.work, 0.0)
     simulate(ea, 4, 1e-4)  # numba compiles its kernels here, outside the timings
     rows = []
-    print("elements, dt [s], steps, max tip error [m], median wall [ms]")
     for n in (int(v) for v in a.elements.split(",")):
         for dt in (float(v) for v in a.dts.split(",")):
-            walls, error = [], np.inf
-            for _ in range(a.repeats):
-                wall, t, x = simulate(ea, n, dt)
-                error = common.tip_error(t, x, ref) if np.isfinite(x).all() else np.inf
-                if not error < L:  # blown up (the tip left the rod's reach)
-                    break
-                walls.append(wall)
-            if not error < L:
-                print(f"{n}, {dt:g}: unstable (tip error {error:.3g} m)", flush=True)
-                continue
-            row = dict(code="PyElastica", configuration="position Verlet", nodes=n + 1, dt_s=dt,
-                       steps=len(t) - 1, max_tip_error_m=error,
-                       wall_ms=statistics.median(walls) * 1e3)
-            rows.append(row)
-            print(f"{n}, {dt:g}, {row['steps']}, {row['max_tip_error_m']:.3e}, "
-                  f"{row['wall_ms']:.1f}", flush=True)
+            common.add_point(rows, f"{n} elements, dt {dt:g}", "PyElastica", "position Verlet",
+                             n + 1, common.measure(lambda: simulate(ea, n, dt), a.repeats, ref))
     path = os.path.join(a.work, "pyelastica-undamped.csv")
     if a.append and os.path.exists(path):
         rows = common.read_rows(path) + rows

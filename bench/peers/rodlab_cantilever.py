@@ -10,7 +10,6 @@ out/peers); the points go to <work>/rodlab-<case>.csv for bench/peers/side_by_si
 """
 import argparse
 import os
-import statistics
 import subprocess
 
 import common
@@ -39,23 +38,17 @@ def main():
              for n in (int(v) for v in a.implicit_nodes.split(","))
              for dt in (float(v) for v in a.dts.split(","))]
     rows = []
-    print("configuration, N, dt [s], steps, max tip error [m], median wall [ms]")
-    for configuration, n, dt, args in runs:
-        walls = []
+
+    def run(n, args):
         try:
-            for _ in range(a.repeats):
-                t, x, r = common.run_rodlab(a.rodlab, out, a.viscosity, "--nodes", n, *args)
-                walls.append(r["wall_time_s"])
+            t, x, r = common.run_rodlab(a.rodlab, out, a.viscosity, "--nodes", n, *args)
         except subprocess.CalledProcessError:
-            print(f"{configuration}, {n}, {dt:g}: did not reach the end: "
-                  f"{common.load_result(out)[2].get('reason', '')[:80]}", flush=True)
-            continue
-        row = dict(code="rodlab", configuration=configuration, nodes=n, dt_s=r["dt"],
-                   steps=r["steps"], max_tip_error_m=common.tip_error(t, x, ref),
-                   wall_ms=statistics.median(walls) * 1e3)
-        rows.append(row)
-        print(f"{configuration}, {n}, {row['dt_s']:.4g}, {row['steps']}, "
-              f"{row['max_tip_error_m']:.3e}, {row['wall_ms']:.2f}", flush=True)
+            return "did not reach the end: " + common.load_result(out)[2].get("reason", "")[:80]
+        return r["wall_time_s"], t, x, r["steps"], r["dt"]
+
+    for configuration, n, dt, args in runs:
+        common.add_point(rows, f"{configuration}, N = {n}, dt {dt if dt else 'auto'}", "rodlab",
+                         configuration, n, common.measure(lambda: run(n, args), a.repeats, ref))
     common.write_rows(os.path.join(a.work, f"rodlab-{common.case_name(a.viscosity)}.csv"), rows)
 
 

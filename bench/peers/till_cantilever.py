@@ -28,7 +28,6 @@ import argparse
 import os
 import re
 import shutil
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -97,8 +96,9 @@ def build(till, work, nodes):
 
 
 def run(binary, dt, viscosity, sos_tol):
-    """One run on core 1: (wall [s], t, tip), or None when the example gives up (its
-    Levenberg-Marquardt throws after 500 iterations: the step has no solution it can find)."""
+    """One run on core 1: (wall [s], t, tip, steps, dt) for common.measure, or why there is none
+    (the example's Levenberg-Marquardt throws after 500 iterations: the step has no solution it
+    can find)."""
     A, I = np.pi * 0.005 ** 2, np.pi * 0.005 ** 4 / 4
     env = dict(os.environ, TILL_dt=repr(dt), TILL_Bs=repr(viscosity * A),
                TILL_Be=repr(3 * viscosity * A), TILL_Bb=repr(3 * viscosity * I),
@@ -107,9 +107,9 @@ def run(binary, dt, viscosity, sos_tol):
                        env=env)
     lines = p.stdout.split("\n")
     if p.returncode != 0 or not lines[0].startswith("wall "):
-        return None
+        return "Levenberg-Marquardt gave up"
     data = np.array([[float(v) for v in line.split()] for line in lines[1:] if line.strip()])
-    return float(lines[0].split()[1]), data[:, 0], data[:, 1:4]
+    return float(lines[0].split()[1]), data[:, 0], data[:, 1:4], len(data), dt
 
 
 def main():
@@ -135,30 +135,15 @@ def main():
     os.makedirs(a.work, exist_ok=True)
     ref = common.reference(a.rodlab, a.work, a.viscosity)
     rows = []
-    print("shooting tol, N, dt [s], steps, max tip error [m], median wall [ms]")
     with tempfile.TemporaryDirectory() as tmp:
         for n in (int(v) for v in a.nodes.split(",")):
             binary = build(a.till, tmp, n)
             for sos in (float(v) for v in a.sos_tol.split(",")):
                 for dt in (float(v) for v in a.dts.split(",")):
-                    walls, out = [], None
-                    for _ in range(a.repeats):
-                        out = run(binary, dt, a.viscosity, sos)
-                        if out is None:
-                            break
-                        walls.append(out[0])
-                    if out is None:
-                        print(f"{sos:g}, {n}, {dt:g}: no solution (Levenberg-Marquardt gave up)",
-                              flush=True)
-                        continue
-                    _, t, x = out
-                    error = common.tip_error(t, x, ref) if np.isfinite(x).all() else np.inf
-                    row = dict(code="Till", configuration=f"BDF-alpha, LM tol {sos:g}", nodes=n,
-                               dt_s=dt, steps=len(t), max_tip_error_m=error,
-                               wall_ms=statistics.median(walls) * 1e3)
-                    rows.append(row)
-                    print(f"{sos:g}, {n}, {dt:g}, {len(t)}, {error:.3e}, {row['wall_ms']:.2f}",
-                          flush=True)
+                    measured = common.measure(lambda: run(binary, dt, a.viscosity, sos),
+                                              a.repeats, ref)
+                    common.add_point(rows, f"LM tol {sos:g}, N = {n}, dt {dt:g}", "Till",
+                                     f"BDF-alpha, LM tol {sos:g}", n, measured)
     common.write_rows(os.path.join(a.work, f"till-{common.case_name(a.viscosity)}.csv"), rows)
     return 0
 
