@@ -174,6 +174,16 @@ BOOST_AUTO_TEST_CASE(joint_refinement_reports_the_orders_in_space) {
     }
 }
 
+/// The distance between two points given as JSON arrays [x, y, z].
+double distance(const Json& a, const Json& b) {
+  double d2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = a[k].get<double>() - b[k].get<double>();
+    d2 += d * d;
+  }
+  return std::sqrt(d2);
+}
+
 /// The largest tip distance over the output times two dynamic results share (within 1e-12 s).
 double max_shared_tip_distance(const Json& a, const Json& b) {
   const auto& ta = a["series"]["t"];
@@ -183,13 +193,8 @@ double max_shared_tip_distance(const Json& a, const Json& b) {
   for (std::size_t i = 0; i < ta.size(); ++i)
     for (std::size_t j = 0; j < tb.size(); ++j)
       if (std::abs(ta[i].get<double>() - tb[j].get<double>()) <= 1e-12) {
-        double d2 = 0.0;
-        for (int k = 0; k < 3; ++k) {
-          const double d = a["series"]["tip_position"][i][k].get<double>() -
-                           b["series"]["tip_position"][j][k].get<double>();
-          d2 += d * d;
-        }
-        worst = std::max(worst, std::sqrt(d2));
+        worst = std::max(worst, distance(a["series"]["tip_position"][i],
+                                         b["series"]["tip_position"][j]));
         ++shared;
       }
   BOOST_TEST(shared >= 5);
@@ -272,12 +277,8 @@ BOOST_AUTO_TEST_CASE(recommend_picks_a_run_that_meets_the_tolerance) {
   BOOST_REQUIRE(a.status == 0);
   BOOST_REQUIRE(b.status == 0);
   const Json ja = Json::parse(read(box.work / "a.json")), jb = Json::parse(read(box.work / "b.json"));
-  double d2 = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double d = ja["tip"]["position"][k].get<double>() - jb["tip"]["position"][k].get<double>();
-    d2 += d * d;
-  }
-  BOOST_TEST(std::sqrt(d2) <= tol, scheme << " N = " << nodes << ": " << std::sqrt(d2));
+  const double d = distance(ja["tip"]["position"], jb["tip"]["position"]);
+  BOOST_TEST(d <= tol, scheme << " N = " << nodes << ": " << d);
 
   // The second call reuses the measurements; an unreachable tolerance is exit 1, and says so.
   const Run again = box.run(args + " --tol 1e-30");
