@@ -35,12 +35,11 @@ double strain_energy_nodes(const rod::RodModel& model, std::span<const Vector6> 
 double gravity_energy(const DynamicProblem& problem, std::span<const SE3> g, double ds) {
   const Vector3 w = problem.weight_per_length();
   if (w.isZero()) return 0.0;
-  const SE3& base = problem.base();
-  const auto& model = problem.model();
-  return trapezoid(g.size(), ds, [&](std::size_t j) {
-    const double s = ds * static_cast<double>(j);
-    return -w.dot(g[j].translation() - rod::reference_position(model, base, s));
-  });
+  // -w . (int p ds - int p* ds), both by the trapezoidal rule over the nodes
+  Vector3 sum = Vector3::Zero();
+  for (std::size_t j = 0; j < g.size(); ++j)
+    sum += (j == 0 || j + 1 == g.size() ? 0.5 : 1.0) * g[j].translation();
+  return -w.dot(ds * sum - rod::reference_centreline_sum(problem.model(), problem.base(), ds, g.size()));
 }
 
 double kinetic_energy(std::span<const lie::Matrix6> inertia, std::span<const Vector6> eta,
