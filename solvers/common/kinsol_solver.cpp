@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <exception>
 #include <string>
+#include <utility>
 
 #include <kinsol/kinsol.h>
 #include <sunlinsol/sunlinsol_klu.h>
@@ -78,8 +79,8 @@ void check_kinls(int flag, const char* call) {
 }  // namespace
 
 struct KinsolSolver::Impl {
-  Impl(const sundials::JacobianPattern& pattern, bool keep, KluOrder order)
-      : pattern(pattern), order(order) {
+  Impl(sundials::JacobianPattern pattern, bool keep, KluOrder order)
+      : pattern(std::move(pattern)), order(order) {
     create(keep);
   }
 

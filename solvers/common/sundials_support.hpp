@@ -110,8 +110,12 @@ inline std::string error_text(const char* module, const char* function, const ch
 
 /// A square CSC sparsity pattern fixed at construction. The callback fills the values of an
 /// Eigen matrix with exactly this pattern; fill() checks the pattern, the finiteness of the
-/// values, and copies them into the SUNMatrix (whose index arrays SUNMatZero_Sparse clears
-/// before every Jacobian call, so they are copied too).
+/// values, and copies them into the SUNMatrix. The SUNMatrix gets its index arrays once, in
+/// make_matrix(), whose zero operation is a no-op: KINSOL and IDA call SUNMatZero before every
+/// Jacobian callback of a direct linear solver, and SUNMatZero_Sparse clears the values and
+/// both index arrays, which fill() then had to copy back (with the zeroing, 6 % of a kinsol
+/// statics solve at N = 100, bench_statics). fill() writes every value, and nothing else
+/// writes the indices.
 class JacobianPattern {
  public:
   using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor>;
@@ -126,7 +130,6 @@ class JacobianPattern {
     J_.makeCompressed();
     RODLAB_THROW_UNLESS(J_.nonZeros() != 0, "{}: the Jacobian pattern is empty", owner_);
     std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
-    pristine_ = J_;
     column_pointers_.assign(J_.outerIndexPtr(), J_.outerIndexPtr() + size() + 1);
     row_indices_.assign(J_.innerIndexPtr(), J_.innerIndexPtr() + J_.nonZeros());
   }
@@ -138,6 +141,8 @@ class JacobianPattern {
     MatrixPtr A(check_created(SUNSparseMatrix(size(), size(), J_.nonZeros(), CSC_MAT, ctx),
                               "SUNDIALS", "SUNSparseMatrix"));
     copy_indices(A.get());
+    std::fill(SUNSparseMatrix_Data(A.get()), SUNSparseMatrix_Data(A.get()) + J_.nonZeros(), 0.0);
+    A->ops->zero = [](SUNMatrix) { return 0; };  // the operations are the matrix's own copy
     return A;
   }
 
@@ -149,7 +154,7 @@ class JacobianPattern {
     std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
     fill_values(J_);
     if (!same_pattern()) {
-      J_ = pristine_;
+      restore_pattern();
       throw std::logic_error(rodlab::format(
           "{}: the Jacobian callback changed the sparsity pattern (only values may be set)",
           owner_));
@@ -157,7 +162,6 @@ class JacobianPattern {
     const double* values = J_.valuePtr();
     if (!std::all_of(values, values + J_.nonZeros(), [](double v) { return std::isfinite(v); }))
       return false;
-    copy_indices(A);
     std::copy(values, values + J_.nonZeros(), SUNSparseMatrix_Data(A));
     return true;
   }
@@ -172,13 +176,22 @@ class JacobianPattern {
     return same;
   }
 
+  /// J_ with the pattern's index arrays again (zero values), after a callback changed them.
+  void restore_pattern() {
+    const auto nnz = static_cast<Eigen::Index>(row_indices_.size());
+    std::vector<int> outer(column_pointers_.begin(), column_pointers_.end());
+    std::vector<int> inner(row_indices_.begin(), row_indices_.end());
+    const std::vector<double> zeros(row_indices_.size(), 0.0);
+    J_ = Eigen::Map<const SparseMatrix>(size(), size(), nnz, outer.data(), inner.data(), zeros.data());
+  }
+
   void copy_indices(SUNMatrix A) const {
     std::copy(column_pointers_.begin(), column_pointers_.end(), SUNSparseMatrix_IndexPointers(A));
     std::copy(row_indices_.begin(), row_indices_.end(), SUNSparseMatrix_IndexValues(A));
   }
 
   std::string owner_;
-  SparseMatrix J_, pristine_;
+  SparseMatrix J_;
   std::vector<sunindextype> column_pointers_, row_indices_;
 };
 

@@ -54,7 +54,7 @@ class Collocation {
  public:
   Collocation(const StaticProblem& problem, int nodes)
       : P_(problem), N_(nodes), L_(problem.length()), extra_(problem.extra_unknowns()), node_(nodes),
-        rows_(nodes - 1), chart_(nodes - 1), lengths_(nodes - 1) {
+        rows_(nodes - 1), chart_(nodes - 1), end_rate_(nodes - 1), lengths_(nodes - 1) {
     scale_.head<4>().setOnes();
     scale_.segment<3>(4).setConstant(L_);
     scale_.tail<6>() = P_.wrench_scale();
@@ -100,6 +100,26 @@ class Collocation {
     return n;
   }
 
+  /// node_from(xp, j) for xp = node j's unknowns with only component k moved (a Jacobian
+  /// column), from node_[j] (the data at the unmoved unknowns): a position moves nothing else,
+  /// a quaternion component moves R and with it (2.34) but not the strains (the strain law
+  /// does not see the pose); only a wrench component needs the strains (the tendon law's solve
+  /// with actuators) again.
+  NodeData moved_node(const State& xp, int j, int k) const {
+    if (k >= kFirstWrench) return node_from(xp, j);
+    NodeData n = node_[j];
+    if (k >= 4) {
+      n.p = L_ * xp.segment<3>(4);
+      return n;
+    }
+    n.q = Quaternion(xp[0], xp[1], xp[2], xp[3]);
+    n.R = SO3::from_quaternion(n.q);
+    n.left.dLambda = P_.wrench_derivative(n.R, n.left.xi, n.left.Lambda);
+    n.right.dLambda = breakpoint_[j] ? P_.wrench_derivative(n.R, n.right.xi, n.right.Lambda)
+                                     : n.left.dLambda;
+    return n;
+  }
+
   /// The 13 scaled rows of interval i, from node a to node b (see the header):
   /// Hermite-Simpson (Lobatto IIIA) on the chart ODE Theta' = dexp^-1_{-Theta} xi (2.84),
   /// Lambda' = ad_xi^T Lambda - W_bar(R_a exp(Theta)), Theta(0) = 0, Theta(h) = log(g_a^-1 g_b).
@@ -119,14 +139,20 @@ class Collocation {
     return Theta;
   }
 
-  /// The rows with the chart Theta of the two poses given.
+  /// The chart's rate at the interval's end b, dexp^-1_{-Theta} xi_b.
+  static Vector6 end_rate(const NodeData& b, const Vector6& Theta) {
+    return lie::small_angle::dexp_inv_apply(-Theta, b.left.xi);
+  }
+
+  /// The rows with the chart Theta of the two poses given, and with end_rate(b, Theta) if
+  /// known (the Jacobian's wrench columns of node a keep it).
   Rows interval(int i, const NodeData& a, const NodeData& b, const Vector6& Theta,
-                Lengths* lengths) const {
+                Lengths* lengths, const Vector6* F_b_known = nullptr) const {
     const double h = h_[i];
     const Side& A = a.right;
     const Side& B = b.left;
     const Vector6 F_a = A.xi;  // dexp^-1_0 = I
-    const Vector6 F_b = lie::small_angle::dexp_inv_apply(-Theta, B.xi);
+    const Vector6 F_b = F_b_known ? *F_b_known : end_rate(b, Theta);
     // Midpoint stage from the cubic Hermite interpolants (compressed form).
     const Vector6 Theta_m = 0.5 * Theta + (h / 8.0) * (F_a - F_b);
     const Vector6 Lambda_m = 0.5 * (A.Lambda + B.Lambda) + (h / 8.0) * (A.dLambda - B.dLambda);
@@ -216,7 +242,9 @@ class Collocation {
     Lengths total{};
     for (int i = 0; i + 1 < N_; ++i) {
       chart_[i] = chart(node_[i], node_[i + 1]);
-      rows_[i] = interval(i, node_[i], node_[i + 1], chart_[i], extra_ ? &lengths_[i] : nullptr);
+      end_rate_[i] = end_rate(node_[i + 1], chart_[i]);
+      rows_[i] = interval(i, node_[i], node_[i + 1], chart_[i], extra_ ? &lengths_[i] : nullptr,
+                          &end_rate_[i]);
       if (extra_)
         for (int k = 0; k < StaticProblem::kMaxActuators; ++k) total[k] += lengths_[i][k];
     }
@@ -234,7 +262,7 @@ class Collocation {
         State xp = xj;
         xp[k] += kFdStep * std::max(1.0, std::abs(xj[k]));
         const double step = xp[k] - xj[k];  // the step actually taken
-        const NodeData np = node_from(xp, j);
+        const NodeData np = moved_node(xp, j, k);
         const bool wrench_column = k >= kFirstWrench;  // the poses, hence the charts, stay
         Lengths changed = total;
         if (j == 0)
@@ -248,7 +276,8 @@ class Collocation {
         }
         if (j + 1 < N_) {  // interval j: node j is its left end
           const Vector6 Theta = wrench_column ? chart_[j] : chart(np, node_[j + 1]);
-          const Rows d = (interval(j, np, node_[j + 1], Theta, extra_ ? &dl : nullptr) - rows_[j]) / step;
+          const Rows d = (interval(j, np, node_[j + 1], Theta, extra_ ? &dl : nullptr,
+                                   wrench_column ? &end_rate_[j] : nullptr) - rows_[j]) / step;
           for (int r = 0; r < kState; ++r) *v++ = d[r];
           if (extra_)
             for (int a = 0; a < StaticProblem::kMaxActuators; ++a) changed[a] += dl[a] - lengths_[j][a];
@@ -428,6 +457,7 @@ class Collocation {
   std::vector<NodeData> node_;  // workspace: node data at the current x
   std::vector<Rows> rows_;      // workspace: interval rows at the current x
   std::vector<Vector6> chart_;  // workspace: interval charts Theta at the current x
+  std::vector<Vector6> end_rate_;  // workspace: their end_rate at the current x
   std::vector<Lengths> lengths_;  // workspace: interval path-length quadratures at the current x
 };
 
