@@ -26,8 +26,13 @@ using ConstRef = Eigen::Ref<const Vector>;
 /// forces from differences of positions over ds, divided by the node mass), i.e. eps
 /// (omega_max / omega_1)^2 in the scaled norm; a safety factor on top.
 constexpr double kRoundingFloor = 2.0;
-/// A solve needing more iterations than this refreshes the Jacobian for the next step.
+/// A solve needing more iterations than this, and kSlowMargin more than the last solve that
+/// started from a fresh Jacobian, refreshes the Jacobian for the next step: at large steps
+/// (dt auto, 10-13 iterations even from a fresh Jacobian) the absolute count alone refreshed
+/// it at every step, one finite-difference Jacobian (39 residuals) per step for no fewer
+/// iterations (bench_dynamics, docs/dynamics.md).
 constexpr int kSlowSolve = 8;
+constexpr int kSlowMargin = 3;
 
 class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStepper {
  public:
@@ -153,6 +158,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     ko_.max_setup_calls = max_setup_calls_;
     // A kept Jacobian of this a is the matrix KLU factorised last: start from its factors.
     ko_.reuse_factorisation = cache_valid_ && cached_a_ == a_;
+    const bool fresh_start = !cache_valid_;
     KinsolStats s = solve();
     long iterations = s.nonlinear_iterations;
     // Fallbacks (large steps): exact Newton with full steps (a fresh Jacobian every
@@ -184,7 +190,9 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
       history_ = 0;
       return failed;
     }
-    if (s.nonlinear_iterations > kSlowSolve) cache_valid_ = false;
+    if (fresh_start && s.converged && iterations == s.nonlinear_iterations)
+      fresh_iterations_ = static_cast<int>(iterations);
+    if (iterations > std::max(kSlowSolve, fresh_iterations_ + kSlowMargin)) cache_valid_ = false;
 
     // Ledger powers at the midpoint, then y1 = y0 + 2 z.
     ym_ = y_.head(n_) + z_.head(n_);
@@ -255,6 +263,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     k1_ = o.k1_, k2_ = o.k2_;
     cached_ = o.cached_, cached_a_ = o.cached_a_, cache_valid_ = o.cache_valid_;
     age_ = o.age_, jacobian_calls_ = o.jacobian_calls_, fresh_jacobians_ = o.fresh_jacobians_;
+    fresh_iterations_ = o.fresh_iterations_;
     warm_ = o.warm_, warm_pending_ = o.warm_pending_;
     g_move_ = o.g_move_, xi_move_ = o.xi_move_, eta_move_ = o.eta_move_;
     rod_.set_state(y_);
@@ -415,6 +424,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   bool cache_valid_ = false;
   int age_ = 0, jacobian_calls_ = 0, max_age_ = 50, max_setup_calls_ = 10;
   long fresh_jacobians_ = 0;
+  int fresh_iterations_ = 0;  ///< iterations of the last solve from a fresh Jacobian
   // Control: a warm start for the next step (warm_start_from) and add_tangent's work arrays.
   Vector warm_;
   bool warm_pending_ = false;
