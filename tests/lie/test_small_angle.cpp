@@ -13,7 +13,7 @@
 // general functions they replace: coefficients e, f, c, SE3::exp, SE3::log and
 // se3::dexp_inv_transpose_apply and se3::dexp_inv_apply (themselves tested against long-double series in test_dexp.cpp
 // and test_coefficients.cpp). Angles from 0 to 0.3 rad, dense around the branch points
-// kTinyAngle and kSmallAngle, random directions, translations of 1e-3..1. Tolerances: the
+// kTinyAngle, kBcdShortAngle and kSmallAngle, random directions, translations of 1e-3..1. Tolerances: the
 // coefficients to 2 eps relative; group elements and vectors to 4 eps relative to their size
 // (the short series drop terms below 1e-17; the rest is rounding in a different order).
 
@@ -25,7 +25,7 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 std::vector<double> angles() {
   std::vector<double> t{0.0, 1e-300, 1e-20, 1e-12, 1e-8, 1e-6, 1e-4, 1e-3};
-  for (double s : {sa::kTinyAngle, sa::kSmallAngle, 2.0 * std::atan(std::sqrt(0.0158)),
+  for (double s : {sa::kTinyAngle, sa::kBcdShortAngle, sa::kSmallAngle, 2.0 * std::atan(std::sqrt(0.0158)),
                    2.0 * std::atan(1e-2)})
     for (double r : {1 - 1e-3, 1 - 1e-9, 1.0, 1 + 1e-9, 1 + 1e-3}) t.push_back(s * r);
   for (int i = 1; i <= 300; ++i) t.push_back(0.3 * i / 300.0);
