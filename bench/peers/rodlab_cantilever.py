@@ -20,7 +20,7 @@ def main():
     parser.add_argument("--nodes", default="6,8,10,14,20,30,40")
     parser.add_argument("--rules", default="verlet,symplectic-euler")
     parser.add_argument("--implicit", default="implicit-midpoint,bdf-alpha")
-    parser.add_argument("--implicit-nodes", default="6,8,10,14,20")
+    parser.add_argument("--implicit-nodes", default="6,8,10,14,20,30,40")
     parser.add_argument("--dts", default="1e-2,5e-3,3e-3,2e-3", help="the implicit schemes' steps")
     parser.add_argument("--viscosity", type=float, default=0.0, help="alpha [Pa s]")
     parser.add_argument("--repeats", type=int, default=5)
