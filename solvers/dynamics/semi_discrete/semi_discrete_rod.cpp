@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "rodlab/check.hpp"
+#include "rodlab/lie/small_angle.hpp"
 #include "rodlab/rod/characteristics.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 
@@ -14,6 +15,7 @@ namespace rodlab::solvers::dynamics {
 namespace {
 
 namespace se3 = lie::se3;
+namespace small = lie::small_angle;
 /// Node colours of the finite-difference Jacobian: node j's rows depend on nodes j-1..j+1.
 constexpr int kColours = 3;
 
@@ -257,10 +259,18 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
   if (m_ > 0) rates_.setZero();
   for (int j = 0; j + 1 < n_; ++j) {
     const SE3 G = g_[j].inverse() * g_[j + 1];
-    const Vector6 x_seg = G.log();  // ds xi_j
+    // The segment's angle is small (ds |kappa|): log, dexp^-1 and dexp^-T share the coefficients
+    // e, f of the small-angle kernels (as in `variational`), and Ad_{G^-1} eta = [R^T w;
+    // R^T (v - p x w)], Ad_G^T lambda = [R^T (m - p x f); R^T f] use one R^T (G = (R, p)).
+    small::EF k;
+    const Vector6 x_seg = small::log(G, k);  // ds xi_j
     xi_[j] = x_seg / ds_;
-    const Vector6 rel = eta_[j + 1] - G.inverse().Ad_apply(eta_[j]);
-    xi_dot_[j] = se3::dexp_inv_apply(-x_seg, rel) / ds_;
+    const lie::Matrix3 Rt = G.rotation().matrix().transpose();
+    const Vector3& p = G.translation();
+    const Vector3 w = eta_[j].head<3>();
+    const Vector6 rel =
+        eta_[j + 1] - se3::join(Rt * w, Rt * Vector3(eta_[j].tail<3>() - p.cross(w)));
+    xi_dot_[j] = small::dexp_inv_apply(-x_seg, rel, k) / ds_;
     const double s_mid = (j + 0.5) * ds_;
     // Kirchhoff rods: the rod's own force part is replaced by the constraint force (header).
     Vector6 xk = model_strain(xi_[j]), xk_dot = xi_dot_[j];
@@ -268,8 +278,9 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
     Vector6 sigma = actuators ? P_.internal_wrench(xk, xk_dot, s_mid, F_)
                               : P_.internal_wrench(xk, xk_dot, s_mid, t);
     if (kirchhoff_ && forces) sigma.tail<3>() += Eigen::Map<const Vector3>(forces + 3 * j);
-    lambda_[j] = se3::dexp_inv_transpose_apply(x_seg, sigma);
-    moved_[j] = G.coAd_apply(lambda_[j]);
+    lambda_[j] = small::dexp_inv_transpose_apply(x_seg, sigma, k);
+    const Vector3 f = lambda_[j].tail<3>();
+    moved_[j] = se3::join(Rt * Vector3(lambda_[j].head<3>() - p.cross(f)), Rt * f);
     seg_diss_[j] = ds_ * xk_dot.dot(V_.cwiseProduct(xk_dot));
     if (muscles_) seg_diss_[j] += ds_ * P_.embedded_dissipation(xk_dot, s_mid);
     seg_work_[j] = actuators ? ds_ * P_.actuator_power(xk, xk_dot, s_mid, F_) : 0.0;
