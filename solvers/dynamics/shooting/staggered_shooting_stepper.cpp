@@ -193,7 +193,7 @@ class StaggeredShootingStepper final : public Stepper {
     RODLAB_THROW_UNLESS(&o.P_ == &P_ && o.n_ == n_, "{}: assign_state from another problem or grid",
                         name_);
     rule_ = o.rule_;
-    Kt_ = o.Kt_;
+    Kt_ = o.Kt_, Kt_inv_ = o.Kt_inv_;
     Kt_matrix_ = o.Kt_matrix_;
     t_u_ = o.t_u_, t_end_ = o.t_end_, c_ = o.c_, end_ = o.end_;
     dissipated_start_ = o.dissipated_start_, work_start_ = o.work_start_;
@@ -382,6 +382,7 @@ class StaggeredShootingStepper final : public Stepper {
   void prepare_references() {
     const Vector6& V = P_.model().V_diag();
     Kt_ = P_.model().K_diag() + c_ * V;
+    Kt_inv_ = Kt_.cwiseInverse();
     Kt_matrix_ = Kt_.asDiagonal();
     if (actuators_ && m_ == 0) F_ = P_.forces(t_u_);  // else set by each shot from its unknowns
     if (muscles_) {
@@ -576,7 +577,7 @@ class StaggeredShootingStepper final : public Stepper {
     auto phi = [&](const Vector6& X, Vector6& lam) {
       lam = entry_at_[j] ? Vector6(lambda_pre - entry_loads(j, X / ds_)) : lambda_pre;
       const Vector6 sigma = small::dexp_transpose_apply(X, lam, small::bcd(X.head<3>().squaredNorm()));
-      if (!actuators_) return Vector6(ds_ * P_.solve_strain(Kt_, xi_ref_[j], sigma, s_mid, t_u_));
+      if (!actuators_) return Vector6(ds_ * P_.solve_elastic_strain(Kt_inv_, xi_ref_[j], sigma));
       const Vector6 guess = X / ds_;  // the last iterate: Newton's steps drop from 3-5 to 1-2
       return Vector6(ds_ * P_.solve_strain(muscles_ ? Kt_full_[j] : Kt_matrix_, xi_ref_[j], sigma,
                                            s_mid, F_, &guess));
@@ -607,7 +608,7 @@ class StaggeredShootingStepper final : public Stepper {
       if (muscles_) {
         Ed = (0.5 * ds_) * (Kt_accel_[j] * Ed);  // the full Kt (embedded_reference.hpp)
       } else {
-        Ed = (0.5 * ds_) * Ed.cwiseQuotient(Kt_);
+        Ed = (0.5 * ds_) * Ed.cwiseProduct(Kt_inv_);
         if (kirchhoff) Ed.tail<3>().setZero();  // nu = nu* inside Phi
       }
       X = next + Ed;
@@ -652,7 +653,7 @@ class StaggeredShootingStepper final : public Stepper {
   double ds_;
   std::string name_;
   StaggeredTangent tangent_;
-  Vector6 scale_, Kt_;
+  Vector6 scale_, Kt_, Kt_inv_;
   Matrix6 Kt_matrix_;
   double t_u_ = 0.0, t_end_ = 0.0, c_ = 0.0;
   double end_ = 1.0;  ///< a of the end-of-step strains a xi_u + (1 - a) xi (1 while settling)
