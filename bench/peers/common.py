@@ -30,6 +30,14 @@ DEFAULT_WORK = os.path.join(SOURCE, "out", "peers")
 DEFAULT_RODLAB = os.path.join(SOURCE, "build", "bin", "rodlab")
 
 
+def add_run_arguments(parser):
+    """The options every measuring script has: repeats per configuration, the rodlab binary (for
+    the reference) and the work directory."""
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--rodlab", default=DEFAULT_RODLAB)
+    parser.add_argument("--work", default=DEFAULT_WORK)
+
+
 def case_name(viscosity):
     return "undamped" if viscosity == 0 else f"viscous{viscosity:g}"
 

@@ -101,11 +101,9 @@ def main():
                         help="a checkout of github.com/GazzolaLab/PyElastica")
     parser.add_argument("--elements", default="10,20,40,80,160,320")
     parser.add_argument("--dts", default="1e-4,5e-5,2e-5,1e-5")
-    parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--append", action="store_true",
                         help="add the points to the existing CSV (a second sweep, other dt per N)")
-    parser.add_argument("--rodlab", default=common.DEFAULT_RODLAB)
-    parser.add_argument("--work", default=common.DEFAULT_WORK)
+    common.add_run_arguments(parser)
     a = parser.parse_args()
     ea = import_elastica(a.pyelastica)
     if ea is None:

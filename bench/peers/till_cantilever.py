@@ -121,9 +121,7 @@ def main():
     parser.add_argument("--sos-tol", default="1e-12,1e-20",
                         help="shooting tolerances (the example's default first)")
     parser.add_argument("--viscosity", type=float, default=0.0, help="alpha [Pa s]")
-    parser.add_argument("--repeats", type=int, default=5)
-    parser.add_argument("--rodlab", default=common.DEFAULT_RODLAB)
-    parser.add_argument("--work", default=common.DEFAULT_WORK)
+    common.add_run_arguments(parser)
     a = parser.parse_args()
     if not a.till or not os.path.exists(os.path.join(a.till, EXAMPLE)):
         print("till_cantilever: skipped: no checkout of ContinuumRobotExamples (give --till DIR or "

@@ -169,7 +169,8 @@ BOOST_AUTO_TEST_CASE(adjoint_identities) {
   Worst conjugation("Ad_g x - vee(g hat(x) g^-1) (1.11)"), apply("Ad_apply(x) - Ad() x"),
       co_apply("coAd_apply(W) - Ad()^T W"), product("Ad_{gh} - Ad_g Ad_h"),
       inverse("Ad_{g^-1} - Ad_g^-1"), ad_conj("Ad_g ad_x Ad_g^-1 - ad_{Ad_g x}"),
-      power("<Ad_g eta, W> - <eta, Ad_g^T W> (1.18)");
+      power("<Ad_g eta, W> - <eta, Ad_g^T W> (1.18)"),
+      matrix_maps("SE3Adjoints (R^T as a matrix) - Ad_{g^-1} x, Ad_g^T W");
   const auto& all = transforms();
   std::size_t k = 0;
   for_each_transform_and_twist([&](const SE3& g, const Vector6& x, const std::string& label) {
@@ -198,8 +199,15 @@ BOOST_AUTO_TEST_CASE(adjoint_identities) {
     power.update(
         std::abs(g.Ad_apply(x).dot(W) - x.dot(g.coAd_apply(W))) / scale_of(nAd * nx, max_abs(W)),
         label);
+    const SE3Adjoints maps(g);
+    matrix_maps.update(std::max(max_abs_diff(maps.inverse_Ad_apply(x), Vector6(Ad_inv * x)) /
+                                    scale_of(nAd, nx),
+                                max_abs_diff(maps.coAd_apply(W), g.coAd_apply(W)) /
+                                    scale_of(nAd, max_abs(W))),
+                       label);
   });
-  for (Worst* w : {&conjugation, &apply, &co_apply, &product, &inverse, &ad_conj, &power})
+  for (Worst* w : {&conjugation, &apply, &co_apply, &product, &inverse, &ad_conj, &power,
+                   &matrix_maps})
     w->check(kAlgebraTol);
 }
 

@@ -190,7 +190,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
       history_ = 0;
       return failed;
     }
-    if (fresh_start && s.converged && iterations == s.nonlinear_iterations)
+    if (fresh_start && iterations == s.nonlinear_iterations)  // converged without a fallback
       fresh_iterations_ = static_cast<int>(iterations);
     if (iterations > std::max(kSlowSolve, fresh_iterations_ + kSlowMargin)) cache_valid_ = false;
 

@@ -260,16 +260,12 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
   for (int j = 0; j + 1 < n_; ++j) {
     const SE3 G = g_[j].inverse() * g_[j + 1];
     // The segment's angle is small (ds |kappa|): log, dexp^-1 and dexp^-T share the coefficients
-    // e, f of the small-angle kernels (as in `variational`), and Ad_{G^-1} eta = [R^T w;
-    // R^T (v - p x w)], Ad_G^T lambda = [R^T (m - p x f); R^T f] use one R^T (G = (R, p)).
+    // e, f of the small-angle kernels (as in `variational`); the two adjoint maps share R^T.
     small::EF k;
     const Vector6 x_seg = small::log(G, k);  // ds xi_j
     xi_[j] = x_seg / ds_;
-    const lie::Matrix3 Rt = G.rotation().matrix().transpose();
-    const Vector3& p = G.translation();
-    const Vector3 w = eta_[j].head<3>();
-    const Vector6 rel =
-        eta_[j + 1] - se3::join(Rt * w, Rt * Vector3(eta_[j].tail<3>() - p.cross(w)));
+    const lie::SE3Adjoints adjoints(G);
+    const Vector6 rel = eta_[j + 1] - adjoints.inverse_Ad_apply(eta_[j]);
     xi_dot_[j] = small::dexp_inv_apply(-x_seg, rel, k) / ds_;
     const double s_mid = (j + 0.5) * ds_;
     // Kirchhoff rods: the rod's own force part is replaced by the constraint force (header).
@@ -279,8 +275,7 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
                               : P_.internal_wrench(xk, xk_dot, s_mid, t);
     if (kirchhoff_ && forces) sigma.tail<3>() += Eigen::Map<const Vector3>(forces + 3 * j);
     lambda_[j] = small::dexp_inv_transpose_apply(x_seg, sigma, k);
-    const Vector3 f = lambda_[j].tail<3>();
-    moved_[j] = se3::join(Rt * Vector3(lambda_[j].head<3>() - p.cross(f)), Rt * f);
+    moved_[j] = adjoints.coAd_apply(lambda_[j]);
     seg_diss_[j] = ds_ * xk_dot.dot(V_.cwiseProduct(xk_dot));
     if (muscles_) seg_diss_[j] += ds_ * P_.embedded_dissipation(xk_dot, s_mid);
     seg_work_[j] = actuators ? ds_ * P_.actuator_power(xk, xk_dot, s_mid, F_) : 0.0;

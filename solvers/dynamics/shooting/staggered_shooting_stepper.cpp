@@ -258,16 +258,10 @@ class StaggeredShootingStepper final : public Stepper {
     if (entry_at_[j]) work += entry_loads(j, xi).dot(in.eta);  // at node j, with its eta
     // node j + 1: compatibility, then its balance
     const SE3 G = small::exp(X);
-    // Ad_{G^-1} eta = [R^T w; R^T (v - p x w)] and Ad_G^T lambda = [R^T (m - p x f); R^T f]
-    // (G = (R, p)) as one product with R^T: four quaternion rotations were a fifth of the step
-    // (Eigen keeps them out of line; bench_dynamics).
-    Eigen::Matrix<double, 3, 4> columns;
-    const Vector3& p = G.translation();
-    columns << in.eta.head<3>(), in.eta.tail<3>() - p.cross(Vector3(in.eta.head<3>())),
-        lambda.head<3>() - p.cross(Vector3(lambda.tail<3>())), lambda.tail<3>();
-    const Eigen::Matrix<double, 3, 4> rotated = G.rotation().matrix().transpose() * columns;
+    // Ad_{G^-1} eta and Ad_G^T lambda with R^T formed once (se3.hpp)
+    const auto [eta_moved, lambda_moved] = lie::SE3Adjoints(G).inverse_Ad_and_coAd_apply(in.eta, lambda);
     MarchNode out;
-    out.eta = se3::join(rotated.col(0), rotated.col(1)) +
+    out.eta = eta_moved +
               ds_ * small::dexp_apply(-X, xi_dot, small::bcd(X.head<3>().squaredNorm()));
     out.g = in.g * G;
     const Vector6& eta = out.eta;
@@ -281,14 +275,14 @@ class StaggeredShootingStepper final : public Stepper {
       const double s = k * ds_;
       const Vector6 Meta = inertia_[k] * eta;
       out.lambda_pre =
-          se3::join(rotated.col(2), rotated.col(3)) +
+          lambda_moved +
           w * (inertia_[k] * (c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
                P_.gravity_load(R) -
                P_.embedded_weight(R, s - 0.5 * ds_, std::min(P_.length(), s + 0.5 * ds_), s) -
                applied - drag);
     } else {
       const Vector6 Meta = M.cwiseProduct(eta);
-      out.lambda_pre = se3::join(rotated.col(2), rotated.col(3)) +
+      out.lambda_pre = lambda_moved +
                        w * (M.cwiseProduct(c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
                             P_.gravity_load(R) - applied - drag);                  // (3.41), (3.8)
     }
