@@ -7,7 +7,7 @@
 
 #define RODLAB_BENCHMARK_MAIN()                                      \
   int main(int argc, char** argv) {                                  \
-    rodlab::keep_freed_memory();                                     \
+    rodlab::configure_process_heap();                                \
     benchmark::Initialize(&argc, argv);                              \
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1; \
     benchmark::RunSpecifiedBenchmarks();                             \

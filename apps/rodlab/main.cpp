@@ -113,9 +113,10 @@ int dispatch(const std::vector<std::string>& args, const std::string& command_li
 }  // namespace rodlab::cli
 
 int main(int argc, char** argv) {
-  // Large blocks from the heap, kept after free (rodlab/heap.hpp): a one-shot kinsol solve at
-  // N = 100 took 1200 -> 985 page faults, 11.2 -> 7.5 ms (docs/statics.md "Cold and warm solves").
-  rodlab::keep_freed_memory();
+  // Large blocks from the heap, kept after free and on huge pages (rodlab/heap.hpp): a one-shot
+  // kinsol solve at N = 100 took 11.2 -> 7.5 ms, then 3.8 -> 2.7 ms (docs/statics.md "Cold and
+  // warm solves").
+  rodlab::configure_process_heap();
   const std::vector<std::string> args(argv + 1, argv + argc);
   std::string command_line = "rodlab";
   for (const auto& a : args) (command_line += ' ') += rodlab::io::shell_quote(a);
