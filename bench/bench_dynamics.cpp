@@ -4,6 +4,7 @@
 // step (variational also undamped, and with the thesis' symplectic-Euler time rule, whose
 // damping is lagged: no corrector pass). Run: build/bin/bench_dynamics --benchmark_repetitions=5
 // Counter ns_per_node_step = time per step / N; real_time_ratio = wall time per simulated second.
+// ida/20ms: the reference scheme over a fixed interval (its steps are its own).
 #include <benchmark/benchmark.h>
 
 #include "bench_main.hpp"
@@ -18,6 +19,7 @@
 #include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/dynamics/shooting/bdf_alpha.hpp"
 #include "rodlab/solvers/dynamics/shooting/implicit_midpoint.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/implicit_midpoint_collocation.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/dynamics/variational/variational.hpp"
@@ -111,7 +113,28 @@ void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt
   }
 }
 
+/// `ida` (the reference scheme): 20 ms of the viscous cantilever from rest, the first 1 ms
+/// outside the timing, at the reference tolerances rtol = atol = 1e-10 (IDA chooses its own
+/// steps; the counter is the wall time per simulated second).
+void ida_benchmark(benchmark::State& state) {
+  const auto scene = io::load_scene_from_string(cantilever(300.0), "bench.yaml");
+  const auto problem = DynamicProblem::from_scene(scene);
+  const int n = static_cast<int>(state.range(0));
+  constexpr double kStart = 1e-3, kEnd = 20e-3;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto stepper = make_ida(problem, {.nodes = n}, straight(problem, n));
+    if (!stepper->step(0.0, kStart).ok) state.SkipWithError("ida: the first millisecond failed");
+    state.ResumeTiming();
+    const StepStatus s = stepper->step(kStart, kEnd - kStart);
+    if (!s.ok) state.SkipWithError(s.reason.c_str());
+  }
+  state.counters["real_time_ratio"] = benchmark::Counter(
+      kEnd - kStart, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 const bool registered = [] {
+  benchmark::RegisterBenchmark("ida/20ms", ida_benchmark)->Arg(20)->Arg(50)->Unit(benchmark::kMillisecond);
   for (const char* scheme : {"variational", "implicit-midpoint", "bdf-alpha"}) {
     auto* b = benchmark::RegisterBenchmark((std::string("step/") + scheme).c_str(), step_benchmark,
                                            std::string(scheme), 0.0, ShootingGrid::euler,

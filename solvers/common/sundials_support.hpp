@@ -26,6 +26,8 @@
 
 #include "rodlab/check.hpp"
 
+#include "serial_vector_ops.hpp"
+
 namespace rodlab::solvers::sundials {
 
 // --- RAII owners ----------------------------------------------------------------------------
@@ -71,8 +73,11 @@ inline ContextPtr make_context(std::string_view module) {
   return ContextPtr(ctx);
 }
 
+/// A serial vector with the compiled operations (serial_vector_ops.hpp); its clones inherit them.
 inline VectorPtr make_vector(int n, SUNContext ctx, std::string_view module) {
-  return VectorPtr(check_created(N_VNew_Serial(n, ctx), module, "N_VNew_Serial"));
+  VectorPtr v(check_created(N_VNew_Serial(n, ctx), module, "N_VNew_Serial"));
+  use_compiled_serial_ops(v.get());
+  return v;
 }
 
 /// The storage of a serial N_Vector as an Eigen vector.
