@@ -114,7 +114,7 @@ int dispatch(const std::vector<std::string>& args, const std::string& command_li
 
 int main(int argc, char** argv) {
   // Large blocks from the heap, kept after free and on huge pages (rodlab/heap.hpp): a one-shot
-  // kinsol solve at N = 100 took 11.2 -> 7.5 ms, then 3.8 -> 2.7 ms (docs/statics.md "Cold and
+  // kinsol solve at N = 100 took 11.2 -> 7.5 ms, then 3.73 -> 2.55 ms (docs/statics.md "Cold and
   // warm solves").
   rodlab::configure_process_heap();
   const std::vector<std::string> args(argv + 1, argv + argc);
