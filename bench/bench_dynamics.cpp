@@ -134,7 +134,10 @@ void ida_benchmark(benchmark::State& state) {
 }
 
 const bool registered = [] {
-  benchmark::RegisterBenchmark("ida/20ms", ida_benchmark)->Arg(20)->Arg(50)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("ida/20ms", ida_benchmark)
+      ->Arg(20)
+      ->Arg(50)
+      ->Unit(benchmark::kMillisecond);
   for (const char* scheme : {"variational", "implicit-midpoint", "bdf-alpha"}) {
     auto* b = benchmark::RegisterBenchmark((std::string("step/") + scheme).c_str(), step_benchmark,
                                            std::string(scheme), 0.0, ShootingGrid::euler,

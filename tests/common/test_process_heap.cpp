@@ -111,6 +111,7 @@ BOOST_AUTO_TEST_CASE(a_second_call_is_harmless) {
   auto* block = static_cast<double*>(std::malloc(kBlock));
   BOOST_REQUIRE(block);
   for (std::size_t i = 0; i < kBlock / sizeof(double); ++i) block[i] = static_cast<double>(i);
-  BOOST_TEST(block[kBlock / sizeof(double) - 1] == static_cast<double>(kBlock / sizeof(double) - 1));
+  const std::size_t last = kBlock / sizeof(double) - 1;
+  BOOST_TEST(block[last] == static_cast<double>(last));
   std::free(block);
 }

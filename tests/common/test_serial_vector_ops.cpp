@@ -47,7 +47,8 @@ Pair make_pair(SUNContext ctx, int count, unsigned seed) {
   rodlab::solvers::sundials::use_compiled_serial_ops(first.get());
   for (int k = 0; k < count; ++k) {
     p.library.emplace_back(N_VNew_Serial(kLength, ctx));
-    p.compiled.emplace_back(k == 0 ? first.release() : N_VClone(p.compiled[0].get()));  // clones inherit
+    // the first carries the compiled operations; the others are its clones (they inherit them)
+    p.compiled.emplace_back(k == 0 ? first.release() : N_VClone(p.compiled[0].get()));
     double* a = N_VGetArrayPointer(p.library.back().get());
     for (sunindextype i = 0; i < kLength; ++i) a[i] = u(rng);
     a[3] = 0.0;

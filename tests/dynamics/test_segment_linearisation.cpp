@@ -74,7 +74,8 @@ std::array<Eigen::Matrix<double, 6, 24>, 4> linearisation(const Segment& s, cons
                                                           const Vector6& eta_a,
                                                           const Vector6& eta_b) {
   const Matrix6 Ad_inv = G.inverse().Ad();
-  Eigen::Matrix<double, 6, 24> phi = Eigen::Matrix<double, 6, 24>::Zero();  // phi = eps_b - Ad_{G^-1} eps_a
+  // phi = eps_b - Ad_{G^-1} eps_a
+  Eigen::Matrix<double, 6, 24> phi = Eigen::Matrix<double, 6, 24>::Zero();
   phi.block<6, 6>(0, 0) = -Ad_inv;
   phi.block<6, 6>(0, 6).setIdentity();
   const Vector6 a = Ad_inv * eta_a;
@@ -84,7 +85,8 @@ std::array<Eigen::Matrix<double, 6, 24>, 4> linearisation(const Segment& s, cons
   drel.block<6, 6>(0, 12) -= Ad_inv;
   drel.block<6, 6>(0, 18) += Matrix6::Identity();
   // d/dx of dexp^-1_{-x} rel is -DT(-x)[dx] rel.
-  const Eigen::Matrix<double, 6, 24> dxi_dot = (se3::dexp_inv(-s.x) * drel - dT(-s.x, rel) * dx) / kDs;
+  const Eigen::Matrix<double, 6, 24> dxi_dot =
+      (se3::dexp_inv(-s.x) * drel - dT(-s.x, rel) * dx) / kDs;
   const Vector6 sigma = s.K.cwiseProduct(s.x / kDs - s.xi_star) + s.V.cwiseProduct(s.xi_dot);
   const Eigen::Matrix<double, 6, 24> dsigma =
       s.K.asDiagonal() * dx / kDs + s.V.asDiagonal() * dxi_dot;
