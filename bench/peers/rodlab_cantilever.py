@@ -6,8 +6,8 @@ over --repeats runs of the result's wall_time_s, one core (taskset -c 1).
     python3 bench/peers/rodlab_cantilever.py [--viscosity 0] [--nodes 6,8,10,14,20,30,40]
 
 The two ida references (N = 50 and 100) take about 15 s on one core (session 16: 4.2 and 10.9 s)
-and are cached in --work (default
-out/peers); the points go to <work>/rodlab-<case>.csv for bench/peers/side_by_side.py.
+and are cached in --work (default out/peers); the points go to <work>/rodlab-<case>.csv for
+bench/peers/side_by_side.py.
 """
 import argparse
 import os
