@@ -15,7 +15,7 @@
 //    work arrays a solve allocates come from there. A first touch of a 4 kB page costs about
 //    1.8 us on the machines we measure on (a kernel entry and the page's zeroing); a 2 MB page
 //    costs 60-240 us once for 512 of them. kinsol N = 100 touched ~780 fresh pages in a solve,
-//    about 1.4 ms of its 3.8 ms; with huge pages 2.7 ms (docs/statics.md). The address space is
+//    about 1.4 ms of its 3.73 ms; with huge pages 2.55 ms (docs/statics.md). The address space is
 //    reserved, not used: resident memory grows by what is touched, in 2 MB steps. Where the
 //    kernel has huge pages off, or the allocator is not glibc's brk heap (sanitizers), nothing
 //    changes but the mallopt settings.

@@ -259,7 +259,8 @@ class StaggeredShootingStepper final : public Stepper {
     // node j + 1: compatibility, then its balance
     const SE3 G = small::exp(X);
     // Ad_{G^-1} eta and Ad_G^T lambda with R^T formed once (se3.hpp)
-    const auto [eta_moved, lambda_moved] = lie::SE3Adjoints(G).inverse_Ad_and_coAd_apply(in.eta, lambda);
+    const auto [eta_moved, lambda_moved] =
+        lie::SE3Adjoints(G).inverse_Ad_and_coAd_apply(in.eta, lambda);
     MarchNode out;
     out.eta = eta_moved +
               ds_ * small::dexp_apply(-X, xi_dot, small::bcd(X.head<3>().squaredNorm()));

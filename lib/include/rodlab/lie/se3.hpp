@@ -305,7 +305,11 @@ class SE3 {
 /// formed once as a matrix: SE3's own maps rotate each 3-vector with the quaternion, which
 /// GCC keeps out of line (a fifth of the staggered shooting step; the semi-discrete rod's rhs,
 /// bench_dynamics; forced inline: out of line the collocation step was 5 % slower). Equal to
-/// G.inverse().Ad_apply and G.coAd_apply to rounding (tests/lie).
+/// G.inverse().Ad_apply and G.coAd_apply to rounding (tests/lie). R is kept, not R^T: the
+/// combined map's R^T * columns then rounds as the march did before this class (a stored R^T
+/// multiplies in another order: the staggered tip series changed in their last bits); the
+/// single maps copy R^T into a local, which GCC keeps in registers (R_.transpose() * v went out
+/// of line).
 class SE3Adjoints {
  public:
   explicit SE3Adjoints(const SE3& g)
