@@ -373,8 +373,10 @@ BOOST_AUTO_TEST_CASE(kept_jacobian_leaves_the_solution_unchanged) {
   // every step. Cases: the viscous cantilever at N = 20, 300 steps of 1 ms (the Jacobian kept
   // for many steps) and 100 steps of 10 ms (modified Newton needs ~10 iterations), at N = 100,
   // 50 steps of 2 ms, and the Kirchhoff cantilever (constraint forces), N = 20, 300 steps of
-  // 1 ms. The kept runs must have reused (under a quarter of the exact runs' Jacobians), the
-  // exact runs not (one Jacobian per iteration). Not at dt: auto (22.6 ms): there exact Newton
+  // 1 ms. The kept runs must have reused (under a third of the exact runs' Jacobians; a quarter
+  // until session 17, when the analytic Jacobian made exact Newton itself faster: 3.98 -> 3.57
+  // iterations per step at 10 ms, while the kept run's 90 -> 94 Jacobians stayed), the exact
+  // runs not (one Jacobian per iteration). Not at dt: auto (22.6 ms): there exact Newton
   // with the line search fails in step 26 and the step is split (28 iterations), so the two runs
   // no longer share a time grid (their tips then differ by 4e-4 m, the time error).
   struct Case {
@@ -398,7 +400,7 @@ BOOST_AUTO_TEST_CASE(kept_jacobian_leaves_the_solution_unchanged) {
                               << double(r.exact_iterations) / c.steps);
     BOOST_TEST(r.max_tip_difference <= 1e-10, c.name);
     BOOST_TEST(r.exact_jacobians >= r.exact_iterations, c.name);
-    BOOST_TEST(4 * r.kept_jacobians < r.exact_jacobians, c.name);
+    BOOST_TEST(3 * r.kept_jacobians < r.exact_jacobians, c.name);
   }
 }
 

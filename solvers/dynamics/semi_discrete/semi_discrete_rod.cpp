@@ -438,13 +438,16 @@ SemiDiscreteRod::SparseMatrix SemiDiscreteRod::constrained_pattern() const {
 }
 
 void SemiDiscreteRod::newton_matrix(double t, const ConstRef& y, double a, double b,
-                                    SparseMatrix& J) const {
+                                    SparseMatrix& J, JacobianMethod method) const {
   const bool ledger = J.rows() == dim_;
   const Layout lay = layout(ledger, false);
   if ((!ledger && J.rows() != lay.n) || J.cols() != J.rows() || y.size() < iD_ ||
       (m_ > 0 && y.size() != dim_))
     throw std::invalid_argument("SemiDiscreteRod::newton_matrix: bad sizes");
-  fill_newton_matrix(lay, t, y, nullptr, m_ ? y.data() + iX_ : nullptr, a, b, y, 0.0, J);
+  if (method == JacobianMethod::automatic && analytic_jacobian())
+    analytic_newton_matrix(lay, t, y, a, b, J);
+  else
+    fill_newton_matrix(lay, t, y, nullptr, m_ ? y.data() + iX_ : nullptr, a, b, y, 0.0, J);
 }
 
 void SemiDiscreteRod::constrained_newton_matrix(double t, const ConstRef& y,

@@ -8,16 +8,17 @@
 // dt -> 0. Unknowns per node j >= 1, 13 of them: the position p_j (world), a quaternion q_j and
 // the body velocity eta_j, then the two ledger unknowns. The system is an ODE written as IDA's
 // residual F = y' - f(t, y); the Newton matrix cj I - df/dy is block tridiagonal in the nodes
-// (13 x 13 blocks) plus two dense ledger rows, filled by finite differences with three node
+// (13 x 13 blocks) plus two dense ledger rows, formed analytically where the derivation covers
+// the scene (SemiDiscreteRod::analytic_jacobian()), else by finite differences with three node
 // colours (j mod 3), then factorised by KLU.
 //
 // Energy ledger: kinetic, strain and gravity energies come from energy.hpp; `dissipated`
 // (viscous power sum_j ds xi_dot^T V xi_dot, drag power -w_j drag . eta_j) and `work_in` (tip
 // wrench, distributed wrench, actuator and cable-entry power) are two extra differential
 // unknowns D' = P_diss(y), W' = P_in(y) integrated by IDA under the same error control (plain
-// IDA has no quadrature facility; that is IDAS). Their rows of the Newton matrix are exact
-// finite differences too (the powers are sums of per-segment and per-node terms, which the
-// colouring keeps apart). The semi-discrete balance T + U + P + D - W = const is exact, so
+// IDA has no quadrature facility; that is IDAS). Their rows of the Newton matrix are formed
+// the same way (the powers are sums of per-segment and per-node terms, which the colouring of
+// the finite differences keeps apart). The semi-discrete balance T + U + P + D - W = const is exact, so
 // Energy::total() drifts only by the integration error.
 //
 // Absolute tolerances per component (atol is the option; SemiDiscreteRod::tolerance_scale()):

@@ -20,8 +20,9 @@
 // frequency of the grid, time_step.hpp).
 //
 // Predictor: the step's mean rate extrapolated linearly from the last two steps' mean rates
-// (2 z / dt), or f(h, y0) after a start or a restart. Jacobian: finite differences with three
-// node colours (semi_discrete_rod.hpp), kept across steps and refreshed when a solve needed more
+// (2 z / dt), or f(h, y0) after a start or a restart. Jacobian: analytic where the derivation
+// covers the scene, else finite differences with three node colours (semi_discrete_rod.hpp),
+// kept across steps and refreshed when a solve needed more
 // than a few iterations, every `jacobian_max_age` steps, or when KINSOL asks again within a
 // solve (a stale Jacobian that fails is recomputed; the diagonal follows a change of dt). Its
 // KLU factors are kept with it (KinsolSolver's keep_factorisation): a step with the kept
@@ -50,7 +51,7 @@ struct ImplicitMidpointCollocationOptions {
   double tol = 1e-10;        ///< on the scaled residual (max norm), see above
   int max_iterations = 50;   ///< KINSOL iterations per step
   int max_setup_calls = 10;  ///< KINSOL iterations between Jacobian evaluations within a step
-  int jacobian_max_age = 50;  ///< steps a finite-difference Jacobian is kept at most (0: a
+  int jacobian_max_age = 50;  ///< steps a Jacobian is kept at most (0: a
                               ///< fresh one at the start of every step; with
                               ///< max_setup_calls = 1, exact Newton throughout)
 };

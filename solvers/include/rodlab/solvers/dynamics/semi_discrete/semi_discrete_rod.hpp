@@ -25,10 +25,11 @@
 // drag power), W' = tip, distributed, actuator and cable-entry power. f does not depend on D, W.
 // The semi-discrete balance T + U + P + D - W = const is exact (energy.hpp formulas).
 //
-// df/dy is block tridiagonal in the nodes (13 x 13 blocks) plus the two dense ledger rows; it is
-// filled by finite differences with three node colours (j mod 3): every node row sees at most
-// one perturbed node, and the ledger powers are sums of per-segment and per-node terms, of which
-// a perturbed node k moves segments k - 1, k and node k only.
+// df/dy is block tridiagonal in the nodes (13 x 13 blocks) plus the two dense ledger rows. It is
+// formed analytically (semi_discrete_jacobian.cpp) where the derivation covers the scene
+// (analytic_jacobian()), else by finite differences with three node colours (j mod 3): every
+// node row sees at most one perturbed node, and the ledger powers are sums of per-segment and
+// per-node terms, of which a perturbed node k moves segments k - 1, k and node k only.
 //
 // Characteristic scales per component (scale(), the finite-difference increments' floor):
 // position L, quaternion 1, angular velocity omega_1 [rad/s], linear velocity L omega_1 [m/s],
@@ -66,6 +67,7 @@
 // angular accelerations couple where a muscle sits off the centreline, (3.20)) and their weight
 // at the offset. `ida` carries the muscle lengths as algebraic unknowns after D and W (index 1;
 // consistent initial values are the lengths of the initial poses).
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
@@ -166,11 +168,22 @@ class SemiDiscreteRod {
   /// over the p, q columns, and their own diagonal).
   SparseMatrix pattern(bool with_ledger) const;
 
-  /// J = a I - b df/dy at (t, y) by coloured finite differences, on a matrix with the pattern of
-  /// pattern(J.rows() == size()) (values overwritten; y of size() or node_size(); the actuator
-  /// unknowns come from y's tail with the ledger; their rows are d(actuator_rows)/d(y, x), the
-  /// muscles' at y: -dL/dy / L and 1 / L).
-  void newton_matrix(double t, const ConstRef& y, double a, double b, SparseMatrix& J) const;
+  /// How newton_matrix() forms df/dy: `automatic` takes the analytic linearisation
+  /// (semi_discrete_jacobian.cpp; docs/dynamics.md "The analytic Jacobian of the semi-discrete
+  /// rod") where it covers the scene (analytic_jacobian()), else coloured finite differences;
+  /// `finite_differences` always differences (the reference the analytic one is tested against).
+  enum class JacobianMethod { automatic, finite_differences };
+  /// Whether `automatic` is analytic here: Cosserat rods without muscles, actuator unknowns or
+  /// cable entry loads (force-driven actuators, gravity, drag, distributed and tip loads are
+  /// covered; their per-segment and per-node terms are differenced locally).
+  bool analytic_jacobian() const;
+
+  /// J = a I - b df/dy at (t, y), on a matrix with the pattern of pattern(J.rows() == size())
+  /// (values overwritten; y of size() or node_size(); the actuator unknowns come from y's tail
+  /// with the ledger; their rows are d(actuator_rows)/d(y, x), the muscles' at y: -dL/dy / L and
+  /// 1 / L). Finite differences: three node colours (above).
+  void newton_matrix(double t, const ConstRef& y, double a, double b, SparseMatrix& J,
+                     JacobianMethod method = JacobianMethod::automatic) const;
 
   /// Rods with constraints at the end of the step (Kirchhoff rods, length control) or actuator
   /// unknowns: the pattern of the constrained Newton matrix (no ledger)
@@ -269,6 +282,27 @@ class SemiDiscreteRod {
                           const double* x, double a, double b, const ConstRef& y_c, double cy,
                           SparseMatrix& J) const;
   void unpack_nodes(const double* y) const;
+  /// The analytic J = a I - b df/dy (semi_discrete_jacobian.cpp), node rows and, with
+  /// lay.ledger, the ledger rows; only where analytic_jacobian().
+  void analytic_newton_matrix(const Layout& lay, double t, const ConstRef& y, double a, double b,
+                              SparseMatrix& J) const;
+  /// d(lambda_j), d(Ad^T lambda_j) and the ledger powers' gradients of segment j by its four
+  /// inputs (pose perturbations of nodes j, j + 1, then their velocities), at the last evaluate().
+  static constexpr int kNearPose = 0, kFarPose = 1, kNearVelocity = 2, kFarVelocity = 3;
+  struct SegmentLinearisation {
+    std::array<lie::Matrix6, 4> lambda, moved;
+    std::array<Vector6, 4> diss, work;
+  };
+  void linearise_segment(int j, SegmentLinearisation& out) const;
+  /// Node j's own terms: d(eta_dot) by its pose perturbation and velocity (without the segment
+  /// stresses), d(p_dot) by its pose, and its ledger powers' gradients.
+  struct NodeLinearisation {
+    lie::Matrix6 eta_pose, eta_velocity;
+    Vector6 diss_pose, diss_velocity, work_pose, work_velocity;
+  };
+  void linearise_node(int j, double t, NodeLinearisation& out) const;
+  mutable std::vector<SegmentLinearisation> seg_lin_;
+  mutable std::vector<NodeLinearisation> node_lin_;
   /// f of the node rows into f (node_size()); the ledger powers into diss, work; the rates of
   /// the unknowns' path lengths into rates_ and their per-segment terms into seg_len_.
   void evaluate(double t, const double* y, double* f, double& diss, double& work,
