@@ -12,6 +12,8 @@
 #include <memory>
 #include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -21,6 +23,7 @@
 #include "rodlab/solvers/dynamics/shooting/implicit_midpoint.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/implicit_midpoint_collocation.hpp"
+#include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/dynamics/variational/variational.hpp"
 
@@ -133,7 +136,36 @@ void ida_benchmark(benchmark::State& state) {
       kEnd - kStart, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+/// The semi-discrete rod's Newton matrix (2/dt) I - df/dy of `ida` and collocation, ledger
+/// rows included, at the state 50 ms into the viscous cantilever's release (N nodes, collocation
+/// at 1 ms): analytic (semi_discrete_jacobian.cpp) or by coloured finite differences.
+void newton_matrix_benchmark(benchmark::State& state, SemiDiscreteRod::JacobianMethod method) {
+  const auto scene = io::load_scene_from_string(cantilever(300.0), "bench.yaml");
+  const auto problem = DynamicProblem::from_scene(scene);
+  const int n = static_cast<int>(state.range(0));
+  auto stepper = make_implicit_midpoint_collocation(problem, {.nodes = n}, straight(problem, n));
+  for (int i = 0; i < 50; ++i) stepper->step(i * 1e-3, 1e-3);
+  const SemiDiscreteRod rod(problem, n, "bench");
+  std::vector<SE3> g;
+  for (const auto& sample : stepper->centerline()) g.push_back(sample.pose);  // the node poses
+  SemiDiscreteRod::Vector y = rod.rest_state(g);
+  rod.pack_nodes(g, stepper->velocities(), y);
+  auto J = rod.pattern(true);
+  for (auto _ : state) {
+    rod.newton_matrix(0.05, y, 2e3, 1.0, J, method);
+    benchmark::DoNotOptimize(J.valuePtr());
+  }
+}
+
 const bool registered = [] {
+  using Method = SemiDiscreteRod::JacobianMethod;
+  for (const auto& [name, method] :
+       {std::pair{"newton_matrix/semi-discrete/analytic", Method::automatic},
+        std::pair{"newton_matrix/semi-discrete/finite-differences", Method::finite_differences}}) {
+    auto* b = benchmark::RegisterBenchmark(name, newton_matrix_benchmark, method);
+    for (int n : {20, 100}) b->Arg(n);
+    b->Unit(benchmark::kMicrosecond);
+  }
   benchmark::RegisterBenchmark("ida/20ms", ida_benchmark)
       ->Arg(20)
       ->Arg(50)

@@ -17,6 +17,7 @@
 // compares it with the coloured finite differences (tests/dynamics/test_analytic_jacobian.cpp).
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "rodlab/lie/small_angle.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
@@ -182,6 +183,8 @@ void SemiDiscreteRod::linearise_node(int j, double t, NodeLinearisation& out) co
 
 void SemiDiscreteRod::analytic_newton_matrix(const Layout& lay, double t, const ConstRef& y,
                                              double a, double b, SparseMatrix& J) const {
+  if (!J.isCompressed())
+    throw std::logic_error("SemiDiscreteRod::analytic_newton_matrix: J must be compressed");
   double diss = 0.0, work = 0.0;
   evaluate(t, y.data(), f0_.data(), diss, work);
   seg_lin_.resize(n_ - 1);
@@ -263,19 +266,29 @@ void SemiDiscreteRod::analytic_newton_matrix(const Layout& lay, double t, const 
     d_diss << diss_pose.transpose() * E, diss_vel.transpose();
     d_work << work_pose.transpose() * E, work_vel.transpose();
 
+    // Column col of the pattern (build_pattern, compressed, rows ascending) holds the node rows
+    // of nodes k - 1 .. k + 1 (13 each, those that are unknowns), then the ledger's two.
+    const int* outer = J.outerIndexPtr();
+    const int* inner = J.innerIndexPtr();
+    double* values = J.valuePtr();
     for (int c = 0; c < kBlock; ++c) {
       const int col = kBlock * (k - 1) + c;
-      for (SparseMatrix::InnerIterator it(J, col); it; ++it) {
-        const auto row = static_cast<int>(it.row());
-        double df = 0.0;
-        if (row < iD_) {
-          const int r = row / kBlock + 1;
-          df = block[r - k + 1](row % kBlock, c);
-        } else {
-          df = row == iD_ ? d_diss[c] : d_work[c];
-        }
-        it.valueRef() = (row == col ? a : 0.0) - b * df;
+      int at = outer[col];
+      for (int o = 0; o < 3; ++o) {
+        const int r = k - 1 + o;
+        if (r < 1 || r > last_) continue;
+        if (inner[at] != kBlock * (r - 1))
+          throw std::logic_error("SemiDiscreteRod::analytic_newton_matrix: not its pattern");
+        Eigen::Map<Eigen::Matrix<double, kBlock, 1>>(values + at) = -b * block[o].col(c);
+        if (o == 1) values[at + c] += a;
+        at += kBlock;
       }
+      if (lay.ledger) {
+        values[at++] = -b * d_diss[c];
+        values[at++] = -b * d_work[c];
+      }
+      if (at != outer[col + 1])
+        throw std::logic_error("SemiDiscreteRod::analytic_newton_matrix: not its pattern");
     }
   }
   if (lay.ledger) {
