@@ -33,6 +33,9 @@ constexpr double kRoundingFloor = 2.0;
 /// iterations (bench_dynamics, docs/dynamics.md).
 constexpr int kSlowSolve = 8;
 constexpr int kSlowMargin = 3;
+/// Iterations of full modified-Newton steps before a step retries with KINSOL's line search
+/// (the slowest converging steps of the benchmarks take about 11).
+constexpr int kChordIterations = 20;
 
 class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStepper {
  public:
@@ -55,6 +58,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     m_ = rod_.unknown_size();
     max_age_ = options.jacobian_max_age;
     max_setup_calls_ = options.max_setup_calls;
+    max_iterations_ = options.max_iterations;
     y_ = rod_.rest_state(g0);
     ym_ = y1_ = y_.head(n_);
     z_ = z0_ = trial_ = F_ = Vector::Zero(n_ + nc_ + m_);
@@ -73,7 +77,6 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     ko_.fnormtol = std::max(options.tol, floor);
     ko_.max_iterations = options.max_iterations;
     ko_.max_setup_calls = options.max_setup_calls;
-    ko_.line_search = true;
     ko_.f_scale = fs_;
     ko_.u_scale = Vector::Ones(n_ + nc_ + m_);
     for (int e = 0; e < m_; ++e) ko_.u_scale[n_ + nc_ + e] = 1.0 / rod_.unknown_scale(e);
@@ -159,8 +162,21 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     // A kept Jacobian of this a is the matrix KLU factorised last: start from its factors.
     ko_.reuse_factorisation = cache_valid_ && cached_a_ == a_;
     const bool fresh_start = !cache_valid_;
+    // Full (modified) Newton steps first: KINSOL's line search costs a quarter of the step at
+    // dt auto in trial residuals (docs/dynamics.md, Benchmarks). Where they do not converge in
+    // kChordIterations, the line search from the predictor again.
+    ko_.line_search = false;
+    ko_.max_iterations = std::min(max_iterations_, kChordIterations);
     KinsolStats s = solve();
     long iterations = s.nonlinear_iterations;
+    ko_.max_iterations = max_iterations_;
+    if (!s.converged) {
+      z_ = z0_;
+      ko_.line_search = true;
+      ko_.reuse_factorisation = cache_valid_ && cached_a_ == a_;
+      s = solve();
+      iterations += s.nonlinear_iterations;
+    }
     // Fallbacks (large steps): exact Newton with full steps (a fresh Jacobian every
     // iteration; the line search can stall in a local minimum of |F|), from the predictor and
     // then from the explicit rate.
@@ -177,7 +193,6 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
       ko_.max_setup_calls = 1;
       ko_.line_search = false;
       s = solve();
-      ko_.line_search = true;
       iterations += s.nonlinear_iterations;
     }
     if (!s.converged) {
@@ -422,7 +437,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   Vector cached_;
   double cached_a_ = 0.0;
   bool cache_valid_ = false;
-  int age_ = 0, jacobian_calls_ = 0, max_age_ = 50, max_setup_calls_ = 10;
+  int age_ = 0, jacobian_calls_ = 0, max_age_ = 50, max_setup_calls_ = 10, max_iterations_ = 50;
   long fresh_jacobians_ = 0;
   int fresh_iterations_ = 0;  ///< iterations of the last solve from a fresh Jacobian
   // Control: a warm start for the next step (warm_start_from) and add_tangent's work arrays.
