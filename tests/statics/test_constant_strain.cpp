@@ -282,3 +282,91 @@ BOOST_AUTO_TEST_CASE(thesis_2_80_componentwise) {
     }
   }
 }
+
+// Case 4 (issue #18): pre-curved rods. The reference twist xi* = [kappa* e_x; e_z] makes the
+// rest shape an arc of curvature kappa* (rod.reference_twist in a scene). Unloaded, every
+// scheme must return that arc (Lambda = 0, xi = xi*); under a body tip moment M e_x the
+// curvature is kappa* + M / (E I) everywhere (Lambda = K (xi - xi*) constant, (2.28), (2.34)),
+// so the closed form is the arc of the total curvature, including a moment that straightens the
+// rod (total curvature 0) and one that bends it against its rest curvature. A helical rest shape
+// xi* = [kx, 0, kz; e_z] (constant curvature and torsion) unloaded: g(s) = exp(s xi*) (the
+// long-double reference). Tolerances as cases 1-3 (closed forms; every scheme to rounding).
+BOOST_AUTO_TEST_CASE(pre_curved_rest_shapes) {
+  const double kappa_star = 1.0 / Table21::L;  // kappa* L = 1 rad
+  struct Case {
+    const char* name;
+    double moment_L_over_EI;  // M L / (E I); the total curvature is kappa* + M / EI
+  };
+  const std::vector<Case> cases{{"unloaded arc", 0.0},
+                                {"arc bent further, M L / EI = 0.5", 0.5},
+                                {"arc straightened, M L / EI = -1", -1.0},
+                                {"arc bent backwards, M L / EI = -2.5", -2.5}};
+  PoseError worst_all;
+  for (const ModelKind kind : {ModelKind::cosserat, ModelKind::kirchhoff}) {
+    const Vector6 xi_star = (Vector6() << kappa_star, 0, 0, 0, 0, 1).finished();
+    const rod::RodModel model(Table21::L, rod::Circle{Table21::D},
+                              rod::Material{Table21::E, Table21::G, Table21::rho, 0.0}, kind,
+                              xi_star);
+    for (const auto& c : cases) {
+      const double M = c.moment_L_over_EI * Table21::EI / Table21::L;
+      const double kappa = kappa_star + M / Table21::EI;
+      StaticProblem problem(model, SE3::identity());
+      problem.set_name(std::string("pre-curved-") + kind_name(kind));
+      problem.set_tip_wrench(loads::PointWrench{wrench(Vector3(M, 0, 0), Vector3::Zero()),
+                                                WrenchFrame::body});
+      const Vector6 xi = (Vector6() << kappa, 0, 0, 0, 0, 1).finished();
+      auto closed_form = [&](double s, Matrix3& R, Vector3& p) {
+        const double a = kappa * s;
+        R = rot_x(a);
+        // (cos a - 1) / kappa and sin a / kappa, with their limits s, 0 at kappa = 0
+        p = std::abs(kappa) < 1e-12
+                ? Vector3(0.0, 0.0, s)
+                : Vector3(0.0, (std::cos(a) - 1.0) / kappa, std::sin(a) / kappa);
+      };
+      for (const auto& scheme : statics_schemes_under_test()) {
+        for (const int N : grid_for(scheme, kNodes)) {
+          const auto r = solve(problem, scheme.name, N);
+          if (!check_result(r, N)) continue;
+          const PoseError e = worst_node_error(r, closed_form);
+          BOOST_TEST(e.max() <= kConstantTwistTol, kind_name(kind) << " " << c.name << " "
+                                                                   << describe(r)
+                                                                   << ": node error " << e.max());
+          double twist_error = 0.0;
+          for (const auto& node : r.centerline)
+            twist_error = std::max(twist_error, (node.twist - xi).norm() / xi_star.norm());
+          BOOST_TEST(twist_error <= kTwistTol, describe(r) << " twist error " << twist_error);
+          worst_all.position = std::max(worst_all.position, e.position);
+          worst_all.rotation = std::max(worst_all.rotation, e.rotation);
+        }
+      }
+    }
+  }
+  // A helical rest shape, unloaded.
+  const Vector6 helix = (Vector6() << 6.0, 0, 4.0, 0, 0, 1).finished();
+  for (const ModelKind kind : {ModelKind::cosserat, ModelKind::kirchhoff}) {
+    const rod::RodModel model(Table21::L, rod::Circle{Table21::D},
+                              rod::Material{Table21::E, Table21::G, Table21::rho, 0.0}, kind,
+                              helix);
+    const StaticProblem problem(model, SE3::identity());
+    for (const auto& scheme : statics_schemes_under_test()) {
+      for (const int N : grid_for(scheme, kNodes)) {
+        const auto r = solve(problem, scheme.name, N);
+        if (!check_result(r, N)) continue;
+        PoseError e;
+        for (const auto& node : r.centerline) {
+          const PoseError en = pose_error(node.pose, expm_reference(node.s * helix));
+          e.position = std::max(e.position, en.position);
+          e.rotation = std::max(e.rotation, en.rotation);
+        }
+        BOOST_TEST(e.max() <= kConstantTwistTol, kind_name(kind) << " unloaded helix "
+                                                                 << describe(r) << ": node error "
+                                                                 << e.max());
+        worst_all.position = std::max(worst_all.position, e.position);
+        worst_all.rotation = std::max(worst_all.rotation, e.rotation);
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("pre-curved rest shapes, worst node error: position " << worst_all.position
+                                                                          << " L, rotation "
+                                                                          << worst_all.rotation);
+}
