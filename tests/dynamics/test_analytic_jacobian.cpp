@@ -1,21 +1,23 @@
 #define BOOST_TEST_MODULE dynamics_analytic_jacobian
 #include <boost/test/unit_test.hpp>
 
-// The analytic Newton matrix of the semi-discrete rod (semi_discrete_jacobian.cpp; docs/dynamics.md
-// "The analytic Jacobian of the semi-discrete rod"; issue #17 item 3), J = df/dy (a = 0, b = -1),
-// against central differences of rhs() (step 1e-6 of each component's scale; stable to the
-// digits shown under steps 1e-4 .. 1e-7), at bent, moving states with unnormalised
-// quaternions, node rows alone (collocation) and with the ledger rows (ida):
-//   (1) the whole matrix, per column, |J_c - R_c| / |R_c|: at segment angles of ~0.01 rad the
-//       analytic matrix is exact but for the truncated derivative of dexp^-1 (measured <= 9e-6:
-//       the finite-difference matrix it replaces is at 1e-6 .. 1e-4); tolerance 3e-5. At ~0.07
-//       rad the truncation shows (measured 1e-4 .. 3e-4, growing as the angle cubed): tolerance
-//       1e-3, still a Newton matrix;
-//   (2) every load alone: the change of J when the load is added (the rod's part cancels) against
-//       the change of the reference, max entry error over max entry, tolerance 1e-4 (the
-//       reference's rounding; the loads' own terms are differenced at 1e-5 rad, error ~1e-10);
-//       a missing or wrong load term, which (1) cannot see under the rod's stiffness, is O(1)
-//       here.
+// The analytic Newton matrix of the semi-discrete rod (semi_discrete_jacobian.cpp;
+// docs/dynamics.md "The analytic Jacobian of the semi-discrete rod"; issue #17 item 3),
+// J = df/dy (a = 0, b = -1), against central differences of rhs() (step 1e-6 of each
+// component's scale; stable to the digits printed under steps 1e-4 .. 1e-7), at bent, moving
+// states with unnormalised and sign-flipped quaternions, node rows alone (collocation) and with
+// the ledger rows (ida):
+//   (1) the whole matrix, per column, |J_c - R_c| / |R_c|: at segment angles of ~0.013 rad
+//       (curvature 1 rad/m) the analytic matrix is exact but for the truncated derivative of
+//       dexp^-1: measured 5e-7 .. 4e-6 (the finite-difference matrix it replaces: 1e-6 .. 4e-6);
+//       tolerance 3e-5. At ~0.07 rad (5 rad/m) the truncation shows: measured 1.2e-5 .. 1.8e-5;
+//       tolerance 1e-3, still a Newton matrix;
+//   (2) every load alone: the change of J when the load is added (the rod's part cancels)
+//       against the change of the reference (step 1e-4), node rows and ledger rows apart, max
+//       entry error over max entry: measured 5e-9 .. 1.4e-6, tolerance 1e-4. A missing or wrong
+//       load term, which (1) cannot see under the rod's stiffness, is O(1) here.
+// Each of nine deliberate mistakes (one load's derivative dropped, DT's second term dropped, the
+// dissipation's factor 2 halved, the actuators' dA/dxi or their power's term dropped) fails.
 #include <algorithm>
 #include <cmath>
 #include <random>

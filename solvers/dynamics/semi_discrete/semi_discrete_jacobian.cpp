@@ -8,13 +8,15 @@
 //   dsigma = (K + dA/dxi) dx / ds + V d(xi_dot)       (A: the actuators' F_k c_k(xi), (3.10))
 //   dlambda = dexp^-T_x dsigma + (DT(x)[dx])^T sigma                              (3.40)
 //   d(Ad_G^T lambda) = Ad_G^T dlambda + S(Ad_G^T lambda) phi
-// with DT the derivative of T(y) = dexp^-1_y to its ad^2 term (relative truncation about
-// angle^3 / 60 at a segment angle ds |kappa|: 1e-8 .. 8e-6 at 0.05 rad, a Newton matrix's
-// accuracy; tests/dynamics/test_segment_linearisation.cpp). Per node: d(ad_eta^T M eta) =
-// S(M eta) deta + ad_eta^T M deta, p_dot = R kappa, q_dot = q (x) [0; psi] / 2 (linear in the raw
-// q), and the external loads (gravity, distributed, drag, tip), small functions of (R, eta)
-// differenced locally (central, per node). The matrix is exact to those truncations: the test
-// compares it with the coloured finite differences (tests/dynamics/test_analytic_jacobian.cpp).
+// with DT the derivative of T(y) = dexp^-1_y to its ad^2 term (a relative truncation that grows
+// as the cube of the segment angle ds |kappa|: 1e-8 .. 8e-6 at 0.05 rad, 1.2e-4 at 0.3 rad,
+// tests/dynamics/test_segment_linearisation.cpp; a Newton matrix's accuracy, also on coarse grids
+// of strongly bent rods, where modified Newton only converges a little slower). Per node:
+// d(ad_eta^T M eta) = S(M eta) deta + ad_eta^T M deta, p_dot = R kappa, q_dot = q (x) [0; psi] / 2
+// (linear in the raw q), and the external loads (gravity, distributed, drag, tip), small functions
+// of (R, eta) differenced locally (central, per node). The matrix is exact but for those
+// truncations: tests/dynamics/test_analytic_jacobian.cpp compares it with central differences
+// of rhs(), entry by entry and load by load.
 #include <cmath>
 #include <limits>
 #include <stdexcept>
