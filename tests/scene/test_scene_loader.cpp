@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "rodlab/io/scene_loader.hpp"
+#include "rodlab/lie/se3.hpp"
 #include "rodlab/lie/so3.hpp"
 
 namespace fs = std::filesystem;
@@ -454,4 +455,38 @@ BOOST_AUTO_TEST_CASE(reference_doc_examples_are_the_tested_scenes) {
   file.erase(0, file.find('\n') + 1);
   BOOST_TEST(yaml_block(example) == file);
   BOOST_TEST(yaml_block(text.find("A minimal scene")) == kMinimal);
+}
+
+BOOST_AUTO_TEST_CASE(rest_strain_forms) {
+  // rod.rest_strain (issue #18): six numbers, an arc by radius or by total angle, or a helix by
+  // radius and pitch, each read into the constant xi* (reference_twist). Reference for the
+  // helix: the inverse relations of a circular helix with curvature kappa and torsion tau,
+  // radius = kappa / (kappa^2 + tau^2), pitch = 2 pi tau / (kappa^2 + tau^2), and the geometry
+  // itself: exp(T xi*) after one turn, T = 2 pi / |omega*|, moves the section by the pitch.
+  auto twist_of = [](const std::string& rest) {
+    return load_scene_from_string(
+               "schema: rodlab.scene/1\nrod:\n  length: 0.1\n"
+               "  section: {shape: circle, diameter: 0.01}\n"
+               "  material: {E: 1.0e6, G: 0.33e6, rho: 1000}\n  rest_strain: " + rest +
+                   "\ntip: {free: {}}\n",
+               "rest.yaml")
+        .rod.reference_twist;
+  };
+  using V6 = scene::Vector6;
+  BOOST_TEST((twist_of("[10, 0, 2, 0, 0, 1]") == (V6() << 10, 0, 2, 0, 0, 1).finished()));
+  BOOST_TEST((twist_of("{arc: {radius: 0.05}}") == (V6() << 20, 0, 0, 0, 0, 1).finished()));
+  const V6 by_angle = twist_of("{arc: {angle: 1.5}}");  // 1.5 rad over L = 0.1 m
+  BOOST_TEST(std::abs(by_angle[0] - 15.0) <= 1e-14);
+  BOOST_TEST((by_angle.tail<5>() == (V6() << 0, 0, 0, 0, 0, 1).finished().tail<5>()));
+  for (const double pitch : {0.05, -0.03}) {
+    const V6 xi = twist_of("{helix: {radius: 0.02, pitch: " + std::to_string(pitch) + "}}");
+    const double k = xi[0], tau = xi[2], w2 = k * k + tau * tau;
+    BOOST_TEST(xi[1] == 0.0);
+    BOOST_TEST((xi.tail<3>() == Vector3(0, 0, 1)));
+    BOOST_TEST(std::abs(k / w2 - 0.02) <= 1e-15);
+    BOOST_TEST(std::abs(2.0 * M_PI * tau / w2 - pitch) <= 1e-15);
+    const double turn = 2.0 * M_PI / std::sqrt(w2);
+    const double rise = lie::SE3::exp(turn * xi).translation().norm();
+    BOOST_TEST(std::abs(rise - std::abs(pitch)) <= 1e-14, "rise per turn " << rise);
+  }
 }
