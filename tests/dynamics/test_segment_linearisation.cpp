@@ -25,24 +25,12 @@ using Vector24 = Eigen::Matrix<double, 24, 1>;
 
 constexpr double kDs = 0.01;
 
-/// h -> ad_h^T s as a matrix: S([m; f]) = [[m^, f^], [f^, 0]].
-Matrix6 S(const Vector6& s) {
-  Matrix6 out = Matrix6::Zero();
-  out.topLeftCorner<3, 3>() = so3::hat(s.head<3>());
-  out.topRightCorner<3, 3>() = so3::hat(s.tail<3>());
-  out.bottomLeftCorner<3, 3>() = so3::hat(s.tail<3>());
-  return out;
-}
-
-/// h -> DT(y)[h] r, T(y) = dexp^-1_y, to the ad^2 term.
-Matrix6 dT(const Vector6& y, const Vector6& r) {
-  return se3::ad(r) / 2.0 - (se3::ad(se3::ad(y) * r) + se3::ad(y) * se3::ad(r)) / 12.0;
-}
-
-/// h -> (DT(x)[h])^T s, to the same order.
+// The linearisation's kernels are the library's (se3.hpp): coad_matrix, dexp_inv_derivative and
+// dexp_inv_transpose_derivative, the ones the analytic Jacobian (semi_discrete_jacobian.cpp) uses.
+Matrix6 S(const Vector6& s) { return se3::coad_matrix(s); }
+Matrix6 dT(const Vector6& y, const Vector6& r) { return se3::dexp_inv_derivative(y, r); }
 Matrix6 dT_transpose(const Vector6& x, const Vector6& s) {
-  const Matrix6 adxT = se3::ad(x).transpose();
-  return -S(s) / 2.0 + (adxT * S(s) + S(adxT * s)) / 12.0;
+  return se3::dexp_inv_transpose_derivative(x, s);
 }
 
 struct Segment {

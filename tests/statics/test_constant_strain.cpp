@@ -69,6 +69,17 @@ PoseError worst_node_error(const StaticResult& r, const F& closed_form) {
   return worst;
 }
 
+/// Worst node pose error of a result against exp(s xi) (the long-double reference).
+PoseError worst_exp_error(const StaticResult& r, const Vector6& xi) {
+  PoseError worst;
+  for (const auto& node : r.centerline) {
+    const PoseError e = pose_error(node.pose, expm_reference(node.s * xi));
+    worst.position = std::max(worst.position, e.position);
+    worst.rotation = std::max(worst.rotation, e.rotation);
+  }
+  return worst;
+}
+
 double worst_twist_error(const StaticResult& r, const Vector6& xi) {
   double worst = 0.0;
   for (const auto& c : r.centerline) worst = std::max(worst, (c.twist - xi).norm() / xi.norm());
@@ -231,12 +242,7 @@ BOOST_AUTO_TEST_CASE(constant_twist_loads) {
       for (const int N : grid_for(scheme, kNodes)) {
         const auto r = solve(problem, scheme.name, N);
         if (!check_result(r, N)) continue;
-        PoseError e;
-        for (const auto& node : r.centerline) {
-          const PoseError en = pose_error(node.pose, expm_reference(node.s * c.xi));
-          e.position = std::max(e.position, en.position);
-          e.rotation = std::max(e.rotation, en.rotation);
-        }
+        const PoseError e = worst_exp_error(r, c.xi);
         BOOST_TEST(e.max() <= kConstantTwistTol, kind_name(c.kind) << " xi = " << c.xi.transpose() << " " << describe(r)
                                                           << ": node error " << e.max());
         BOOST_TEST(worst_twist_error(r, c.xi) <= kTwistTol, describe(r) << " twist error " << worst_twist_error(r, c.xi));
@@ -352,12 +358,7 @@ BOOST_AUTO_TEST_CASE(pre_curved_rest_shapes) {
       for (const int N : grid_for(scheme, kNodes)) {
         const auto r = solve(problem, scheme.name, N);
         if (!check_result(r, N)) continue;
-        PoseError e;
-        for (const auto& node : r.centerline) {
-          const PoseError en = pose_error(node.pose, expm_reference(node.s * helix));
-          e.position = std::max(e.position, en.position);
-          e.rotation = std::max(e.rotation, en.rotation);
-        }
+        const PoseError e = worst_exp_error(r, helix);
         BOOST_TEST(e.max() <= kConstantTwistTol, kind_name(kind) << " unloaded helix "
                                                                  << describe(r) << ": node error "
                                                                  << e.max());

@@ -1,5 +1,4 @@
 // rod: model, length, section, material, and the rest shape: reference_twist or rest_strain.
-#include <cmath>
 #include <numbers>
 #include <stdexcept>
 

@@ -34,27 +34,6 @@ using lie::Matrix6;
 using Matrix67 = Eigen::Matrix<double, 6, 7>;
 using Matrix13 = Eigen::Matrix<double, SemiDiscreteRod::kBlock, SemiDiscreteRod::kBlock>;
 
-/// h -> ad_h^T s as a matrix: S([m; f]) = [[m^, f^], [f^, 0]].
-Matrix6 coad_matrix(const Vector6& s) {
-  Matrix6 out = Matrix6::Zero();
-  out.topLeftCorner<3, 3>() = so3::hat(s.head<3>());
-  out.topRightCorner<3, 3>() = so3::hat(s.tail<3>());
-  out.bottomLeftCorner<3, 3>() = so3::hat(s.tail<3>());
-  return out;
-}
-
-/// h -> DT(y)[h] r, T(y) = dexp^-1_y, to the ad^2 term.
-Matrix6 dexp_inv_derivative(const Vector6& y, const Vector6& r) {
-  return 0.5 * se3::ad(r) - (se3::ad(se3::ad_apply(y, r)) + se3::ad(y) * se3::ad(r)) / 12.0;
-}
-
-/// h -> (DT(x)[h])^T s, to the same order.
-Matrix6 dexp_inv_transpose_derivative(const Vector6& x, const Vector6& s) {
-  const Matrix6 adxT = se3::ad(x).transpose();
-  const Matrix6 Ss = coad_matrix(s);
-  return -0.5 * Ss + (adxT * Ss + coad_matrix(adxT * s)) / 12.0;
-}
-
 /// d eps / d(p world, q raw) of a node: [[0, Q], [R^T, 0]], Q = 2 [-v | w I - v^] / |q|^2 the
 /// rotation dtheta = 2 vec(conj(q) (x) dq) / |q|^2 of a quaternion column.
 Matrix67 pose_map(const double* b, const Matrix3& R) {
@@ -84,8 +63,9 @@ void SemiDiscreteRod::linearise_segment(int j, SegmentLinearisation& out) const 
   const Vector6 rel = eta_[j + 1] - a;
   const double s_mid = (j + 0.5) * ds_;
   const bool actuators = P_.has_actuators();
-  const Vector6 sigma = actuators ? P_.internal_wrench(xi_[j], xi_dot_[j], s_mid, F_)
-                                  : P_.internal_wrench(xi_[j], xi_dot_[j], s_mid, 0.0);
+  // (3.10) without muscles (analytic_jacobian()): the rod's wrench and the actuators' A(xi)
+  const Vector6 act = actuators ? Vector6(P_.actuator_wrench(xi_[j], s_mid, F_)) : Vector6::Zero();
+  const Vector6 sigma = P_.rod_wrench(xi_[j], xi_dot_[j]) + act;
   // dA/dxi of the actuators' F_k c_k(xi), by central differences in xi.
   Matrix6 dA_dxi = Matrix6::Zero();
   if (actuators) {
@@ -103,12 +83,11 @@ void SemiDiscreteRod::linearise_segment(int j, SegmentLinearisation& out) const 
   // Ad_inv for its pose; drel = -Ad_inv deta_a for its velocity): the relations are linear in
   // (phi, drel).
   const Vector6 V_xi_dot = V_.cwiseProduct(xi_dot_[j]);
-  const Vector6 act = actuators ? Vector6(P_.actuator_wrench(xi_[j], s_mid, F_)) : Vector6::Zero();
   auto finish = [&](int in, const Matrix6& dx, const Matrix6& dxi_dot, const Matrix6& dsigma) {
     out.lambda[in] = T_plus_T * dsigma;
-    if (in == kFarPose) out.lambda[in] += dexp_inv_transpose_derivative(x, sigma) * dx;
+    if (in == kFarPose) out.lambda[in] += se3::dexp_inv_transpose_derivative(x, sigma) * dx;
     out.moved[in] = coAd * out.lambda[in];
-    if (in == kFarPose) out.moved[in] += coad_matrix(moved_[j]);
+    if (in == kFarPose) out.moved[in] += se3::coad_matrix(moved_[j]);
     // seg_diss = ds xi_dot^T V xi_dot; seg_work = -ds A(xi)^T xi_dot (actuator_power)
     out.diss[in] = 2.0 * ds_ * dxi_dot.transpose() * V_xi_dot;
     out.work[in].setZero();
@@ -118,7 +97,7 @@ void SemiDiscreteRod::linearise_segment(int j, SegmentLinearisation& out) const 
   };
   {  // the far pose: dx = T(-x), d(xi_dot) = (-T(-x) ad_a - DT(-x)[dx] rel) / ds
     const Matrix6 dxi_dot =
-        -(T_minus * se3::ad(a) + dexp_inv_derivative(-x, rel) * T_minus) / ds_;
+        -(T_minus * se3::ad(a) + se3::dexp_inv_derivative(-x, rel) * T_minus) / ds_;
     Matrix6 stiffness = dA_dxi;
     stiffness.diagonal() += P_.model().K_diag();
     finish(kFarPose, T_minus, dxi_dot, (stiffness * T_minus) / ds_ + V_.asDiagonal() * dxi_dot);
@@ -143,7 +122,7 @@ void SemiDiscreteRod::linearise_node(int j, double t, NodeLinearisation& out) co
   const Vector6& eta = eta_[j];
   const Vector6 Meta = M_.cwiseProduct(eta);
   // d(ad_eta^T M eta) = S(M eta) deta + ad_eta^T M deta
-  out.eta_velocity = coad_matrix(Meta) + se3::ad(eta).transpose() * M_.asDiagonal();
+  out.eta_velocity = se3::coad_matrix(Meta) + se3::ad(eta).transpose() * M_.asDiagonal();
   // Loads of the pose (gravity, distributed, tip): central differences in dtheta.
   const Vector6 applied = P_.applied_load(R, t);
   const Vector6 tip_load = tip ? P_.tip_load(R, t) : Vector6::Zero();

@@ -169,6 +169,31 @@ inline Matrix6 dexp_inv(const Vector6& xi) {
   return D;
 }
 
+/// h -> ad_h^T s as a matrix: coad_matrix([m; f]) = [[m^, f^], [f^, 0]] (ad_h^T s =
+/// coad_matrix(s) h; the linearisation of a wrench moved by a perturbed twist).
+inline Matrix6 coad_matrix(const Vector6& s) {
+  Matrix6 out = Matrix6::Zero();
+  out.topLeftCorner<3, 3>() = so3::hat(s.head<3>());
+  out.topRightCorner<3, 3>() = so3::hat(s.tail<3>());
+  out.bottomLeftCorner<3, 3>() = so3::hat(s.tail<3>());
+  return out;
+}
+
+/// h -> DT(y)[h] r, the derivative of T(y) = dexp^-1_y = I - ad_y / 2 + ad_y^2 / 12 - ...
+/// applied to r, to the ad^2 term: ad_r h / 2 - (ad_{ad_y r} + ad_y ad_r) h / 12 (relative
+/// truncation growing as |y|^3; tests/dynamics/test_segment_linearisation.cpp).
+inline Matrix6 dexp_inv_derivative(const Vector6& y, const Vector6& r) {
+  return 0.5 * ad(r) - (ad(ad_apply(y, r)) + ad(y) * ad(r)) / 12.0;
+}
+
+/// h -> (DT(x)[h])^T s to the same order: -coad_matrix(s) h / 2 + (ad_x^T coad_matrix(s) +
+/// coad_matrix(ad_x^T s)) h / 12.
+inline Matrix6 dexp_inv_transpose_derivative(const Vector6& x, const Vector6& s) {
+  const Matrix6 adxT = ad(x).transpose();
+  const Matrix6 Ss = coad_matrix(s);
+  return -0.5 * Ss + (adxT * Ss + coad_matrix(adxT * s)) / 12.0;
+}
+
 /// Truncated series of order q (terms k = 0..q): sum_k ad_xi^k / (k+1)!  (for RKMK).
 inline Vector6 dexp_series_apply(const Vector6& xi, const Vector6& y, int q) {
   Vector6 term = y, sum = coefficients::kInverseFactorialShifted[0] * y;
