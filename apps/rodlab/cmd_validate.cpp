@@ -118,8 +118,8 @@ const Command& validate_command() {
       "validate",
       "[--quick|--full] [--out DIR] [--scenes DIR] [--only FAMILY,...] [--no-figures]",
       "run the validation suite; write index.html, report.json, report.md, data and figures",
-      "Runs the validation checks (families: scenes, statics, dynamics, studies, control,\n"
-      "learning, extremes; docs/validation.md).\n"
+      "Runs the validation checks (families: scenes, statics, dynamics, literature, studies,\n"
+      "control, learning, extremes; docs/validation.md).\n"
       "Each check records its measured value, the reference (and where it comes from), the\n"
       "tolerance and pass/fail. Writes into DIR, atomically: index.html (one self-contained\n"
       "page with every check and figure), report.json (checks, data sets, figure specs and\n"

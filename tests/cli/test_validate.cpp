@@ -82,8 +82,8 @@ BOOST_AUTO_TEST_CASE(quick_suite_writes_the_whole_report) {
   BOOST_TEST(contains(r.out, summary), "printed: " << r.out);
   std::set<std::string> families;
   for (const auto& c : j["checks"]) families.insert(c["family"].get<std::string>());
-  BOOST_TEST((families == std::set<std::string>{"scenes", "statics", "dynamics", "studies", "control",
-                                                "learning", "extremes"}));
+  BOOST_TEST((families == std::set<std::string>{"scenes", "statics", "dynamics", "literature",
+                                                "studies", "control", "learning", "extremes"}));
   // The studies family: recommend answers for a statics and a dynamics tolerance, the front.
   int statics_recommends = 0, dynamics_recommends = 0, fronts = 0;
   for (const auto& c : j["checks"]) {

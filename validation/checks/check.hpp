@@ -154,6 +154,10 @@ std::vector<Check> statics_checks(const ValidationContext& context);
 /// schemes and with the IDA reference.
 std::vector<Check> dynamics_checks(const ValidationContext& context);
 
+/// literature_checks.cpp: the classic rod benchmarks of issue #18 against closed forms, an
+/// rk8pd planar reference and published tables (docs/validation.md "literature").
+std::vector<Check> literature_checks(const ValidationContext& context);
+
 /// validation_study_checks.cpp: the studies (study_*.hpp) on example scenes: work-precision
 /// sweeps (statics, dynamics) with their Pareto fronts and `study recommend` answers checked
 /// against an independent reference (timings are reported, never gated), the stability map of

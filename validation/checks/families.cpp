@@ -9,13 +9,18 @@ namespace rodlab::validation {
 
 std::span<const CheckFamily> check_families() {
   // Add a family here (and its function in its own file, declared in validation_checks.hpp).
-  static const std::array<CheckFamily, 7> families{{
+  static const std::array<CheckFamily, 8> families{{
       {"scenes", "example scenes load; derived quantities equal their closed forms", &scene_checks},
       {"statics", "statics schemes on the thesis's 2.7 problems and closed forms", &statics_checks},
       {"dynamics",
        "dynamics schemes on the Table 2.1 cantilever: bending frequency, energy with and without "
        "damping, det drift, stability limit, static limit, agreement between schemes and with IDA",
        &dynamics_checks},
+      {"literature",
+       "the classic rod benchmarks against independent references: the self-weight and the "
+       "post-buckled elastica, Euler's and Greenhill's critical loads with the Cosserat "
+       "corrections, Bathe and Bolourchi's 45-degree bend (--full: every load)",
+       &literature_checks},
       {"studies",
        "the studies of `rodlab study` on example scenes: work-precision diagrams (statics and "
        "dynamics) with their Pareto fronts and `study recommend` answers verified against an "

@@ -1,0 +1,45 @@
+#pragma once
+// Closed forms of rod buckling, for the "literature" family (docs/validation.md, where each is
+// derived; the Cosserat corrections are derived there, not taken from the thesis).
+//
+// Post-buckled clamped-free elastica (inextensible; Timoshenko & Gere, Theory of Elastic
+// Stability, 2nd ed., 1961, section 2.7): a compressive dead tip load P buckles the column to the
+// tip angle alpha with k = sin(alpha / 2),
+//     P L^2 / EI = K(k)^2,   x_tip / L = 2 k / K(k),   z_tip / L = 2 E(k) / K(k) - 1.
+//
+// Euler's loads of a Cosserat column (linear law (2.28), shear GA, extension EA). Linearising the
+// planar balance EI theta'' + p'_x P = 0 about the straight compressed rod, whose strains are
+// nu1 = P sin theta / GA and nu3 = 1 - P cos theta / EA, gives
+//     EI theta'' + P (1 + P/GA - P/EA) theta = 0,
+// so the critical load solves P (1 + P/GA - P/EA) = P_E, with P_E = pi^2 EI / (beta L)^2 and
+// beta = 2 (clamped-free), 1 (pinned-pinned), 1/2 (clamped-clamped): the shear term is Haringx's
+// and lowers P, the shortening raises it. Kirchhoff: P = P_E.
+//
+// Greenhill's clamped-clamped shaft under an end twisting moment M (Greenhill 1883; Timoshenko &
+// Gere section 2.18). The lateral tilt t = t_x + i t_y of the sections obeys
+// EI i t'' + M t' = -i N (N the lateral end reaction) and the centreline w' = t + N / GA; the
+// clamped ends t(0) = t(L) = w(0) = w(L) = 0 have a non-zero solution when, with
+// mu = M L / EI and g = EI / (GA L^2),
+//     tan(mu / 2) = mu / (2 (1 + g mu^2)),
+// the classic tan(mu/2) = mu/2, mu = 8.9868, for an unshearable rod (g = 0).
+
+namespace rodlab::validation::reference {
+
+struct PostBuckledElastica {
+  double load = 0.0;  ///< P L^2 / EI
+  double x = 0.0;     ///< tip lateral deflection / L
+  double z = 0.0;     ///< tip axial position / L
+};
+
+/// The post-buckled clamped-free elastica at tip angle alpha in (0, pi).
+PostBuckledElastica post_buckled_elastica(double alpha);
+
+/// The critical compressive load of a Cosserat column with Euler load P_E (Kirchhoff: GA = EA =
+/// 0, the load P_E itself).
+double cosserat_critical_load(double euler_load, double GA, double EA);
+
+/// Greenhill's critical twisting moment of a clamped-clamped rod, M L / EI, for the shear
+/// parameter g = EI / (GA L^2) (0: unshearable).
+double greenhill_clamped_moment(double g);
+
+}  // namespace rodlab::validation::reference
