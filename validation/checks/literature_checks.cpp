@@ -22,6 +22,7 @@
 
 #include "checks/bifurcation_load.hpp"
 #include "checks/check.hpp"
+#include "checks/literature_frequencies.hpp"
 #include "reference/bathe_bolourchi.hpp"
 #include "reference/buckling.hpp"
 #include "reference/planar_rod.hpp"
@@ -347,8 +348,14 @@ void forty_five_degree_bend(Literature& f) {
                .description = "45-degree bend (Bathe & Bolourchi 1979): centreline at each tip "
                               "force, x, y, z",
                .columns = {"case", "x", "y", "z"}};
-  const std::vector<bb::Published> table(bb::kSimoVuQuoc.begin(), bb::kSimoVuQuoc.end());
-  for (const auto& row : table) {
+  // The unloaded bend, and the published tips (a line through the three loads).
+  for (int i = 0; i <= 20; ++i) {
+    const double a = i * std::numbers::pi / 80.0;
+    data.add_row({"unloaded", bb::kRadius * std::sin(a), bb::kRadius * (1 - std::cos(a)), 0.0});
+  }
+  for (const auto& row : bb::kSimoVuQuoc)
+    data.add_row({"Simo & Vu-Quoc tips", row.x, row.y, row.z});
+  for (const auto& row : bb::kSimoVuQuoc) {
     if (!f.context.full && row.force != 600.0) continue;
     const StaticProblem P = bend(row.force);
     Vector3 tips[2];
@@ -388,14 +395,21 @@ void forty_five_degree_bend(Literature& f) {
        .xlabel = "x",
        .ylabel = "y, z",
        .caption = "Centrelines of the 45-degree bend (radius 100, unit square section, E = 1e7, "
-                  "G J = 8.333e5 as published) under an out-of-plane tip force P = 300, 450 and "
-                  "600, rkmk-rk4 N = 101.",
+                  "G J = 8.333e5 as published) unloaded and under an out-of-plane tip force "
+                  "P = 300, 450 and 600 (rkmk-rk4 N = 101), and the line through Simo & "
+                  "Vu-Quoc's tips at the three loads.",
        .style = "lines"});
   f.context.emit(std::move(data));
 }
 
+/// The natural frequencies from free vibration (literature_frequencies.cpp).
+void frequencies(Literature& f) {
+  for (auto& c : free_vibration_frequencies(f.context)) f.checks.push_back(std::move(c));
+}
+
 constexpr void (*kCases[])(Literature&) = {&self_weight_elastica, &post_buckled_elastica,
-                                           &critical_loads, &forty_five_degree_bend};
+                                           &critical_loads, &forty_five_degree_bend,
+                                           &frequencies};
 
 }  // namespace
 
