@@ -63,6 +63,12 @@ BOOST_AUTO_TEST_CASE(greenhill_moment_is_the_clamped_determinants_root) {
   }
 }
 
+// Prandtl's and Michell's constant (Timoshenko & Gere 6.3: 4.013); scipy's brentq on
+// jv(-0.25, g/2) gives 4.0125993435789.
+BOOST_AUTO_TEST_CASE(lateral_torsional_constant_is_the_bessel_root) {
+  BOOST_TEST(std::abs(ref::lateral_torsional_constant() - 4.0125993435789) <= 1e-11);
+}
+
 // The planar shooting against the dead-load elastica's closed form (Bisshopp & Drucker 1945;
 // the 17-digit values of tests/statics/elastica_reference.hpp, cross-checked with mpmath).
 BOOST_AUTO_TEST_CASE(planar_cantilever_reproduces_the_tip_load_elastica) {

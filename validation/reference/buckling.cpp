@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include <gsl/gsl_sf_bessel.h>
 #include <gsl/gsl_sf_ellint.h>
 
 namespace rodlab::validation::reference {
@@ -37,6 +38,24 @@ double greenhill_clamped_moment(double g) {
     (f(mid) < 0.0 ? lo : hi) = mid;
   }
   return lo + hi;  // mu = 2 x
+}
+
+double lateral_torsional_constant() {
+  // J_{-1/4} = cos(pi/4) J_{1/4} - sin(pi/4) Y_{1/4} (GSL's Bessel functions take nu >= 0); its
+  // first zero lies between gamma / 2 = 1.5 and 2.5.
+  const auto f = [](double gamma) {
+    const double x = 0.5 * gamma;
+    return gsl_sf_bessel_Jnu(0.25, x) - gsl_sf_bessel_Ynu(0.25, x);
+  };
+  double lo = 3.0, hi = 5.0;
+  if (!((f(lo) < 0.0) != (f(hi) < 0.0)))
+    throw std::domain_error("lateral_torsional_constant: bracket");
+  const bool rising = f(hi) > 0.0;
+  for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    ((f(mid) < 0.0) == rising ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 }  // namespace rodlab::validation::reference

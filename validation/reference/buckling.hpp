@@ -22,6 +22,13 @@
 // mu = M L / EI and g = EI / (GA L^2),
 //     tan(mu / 2) = mu / (2 (1 + g mu^2)),
 // the classic tan(mu/2) = mu/2, mu = 8.9868, for an unshearable rod (g = 0).
+//
+// Lateral-torsional buckling of a cantilever strip (Prandtl 1899, Michell 1899; Timoshenko &
+// Gere section 6.3) under a tip force P through the centroid in its stiff plane, the strip rigid
+// in that plane: the twist phi obeys GJ phi'' + P^2 (L - s)^2 / (EI_weak) phi = 0 with phi(0) = 0
+// and phi'(L) = 0, whose solution sqrt(L - s) J_{-1/4}(gamma (L - s)^2 / (2 L^2)) gives
+//     P_cr = gamma sqrt(EI_weak GJ) / L^2,   gamma the first root of J_{-1/4}(gamma / 2) = 0,
+// gamma = 4.0126. A finite in-plane stiffness raises it by a relative O(EI_weak / EI_strong).
 
 namespace rodlab::validation::reference {
 
@@ -41,5 +48,8 @@ double cosserat_critical_load(double euler_load, double GA, double EA);
 /// Greenhill's critical twisting moment of a clamped-clamped rod, M L / EI, for the shear
 /// parameter g = EI / (GA L^2) (0: unshearable).
 double greenhill_clamped_moment(double g);
+
+/// The lateral-torsional buckling constant gamma = 4.0126 of the cantilever strip.
+double lateral_torsional_constant();
 
 }  // namespace rodlab::validation::reference
