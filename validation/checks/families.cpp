@@ -19,7 +19,9 @@ std::span<const CheckFamily> check_families() {
       {"literature",
        "the classic rod benchmarks against independent references: the self-weight and the "
        "post-buckled elastica, Euler's and Greenhill's critical loads with the Cosserat "
-       "corrections, Bathe and Bolourchi's 45-degree bend (--full: every load)",
+       "corrections and lateral-torsional buckling, Bathe and Bolourchi's 45-degree bend, and "
+       "the cantilever's natural frequencies against the Timoshenko beam (--full: every load, "
+       "finer meshes and ida)",
        &literature_checks},
       {"studies",
        "the studies of `rodlab study` on example scenes: work-precision diagrams (statics and "

@@ -7,11 +7,11 @@
 // solutions take the torsional stiffness G J with J = 1/6, the polar moment of the unit square
 // (BeamDyn's test of the case lists GJ = 8.333e5), not its Saint-Venant constant 0.1406.
 //
-// The published tip positions are finite-element solutions with 8 elements:
+// The published tip positions are finite-element solutions:
 //   Simo & Vu-Quoc (J.C. Simo, L. Vu-Quoc, A three-dimensional finite-strain rod model. Part II:
-//   computational aspects, CMAME 58 (1986) 79-116), at P = 300, 450, 600;
+//   computational aspects, CMAME 58 (1986) 79-116), 8 elements, at P = 300, 450, 600;
 //   Bathe & Bolourchi (1979) at P = 600: (47.2, 15.9, 53.4).
-// Both are 8-element discretisations, a few tenths of a percent of the tip displacement from the
+// Discretisations of this kind sit a few tenths of a percent of the tip displacement from the
 // converged solution.
 #include <array>
 #include <cmath>
@@ -38,7 +38,7 @@ constexpr std::array<Published, 3> kSimoVuQuoc{{{300.0, 58.84, 22.33, 40.08},
 constexpr Published kBatheBolourchi{600.0, 47.2, 15.9, 53.4};
 
 /// The tolerance against a published tip: 0.5 % of its displacement from the unloaded tip
-/// (the published solutions are 8-element discretisations).
+/// (the published solutions are coarse finite-element discretisations).
 constexpr double kPublishedTolerance = 5e-3;
 
 inline lie::Vector3 unloaded_tip() {

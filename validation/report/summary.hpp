@@ -1,7 +1,7 @@
 #pragma once
 // What the report leads with (docs/validation.md "The report"): the headline checks grouped by
-// topic (observed orders, agreement with the references, energy, structure drift, the
-// recommended schemes), taken from the checks' own numbers (Check::topic), never hand-typed;
+// topic (observed orders, agreement with the references, energy, structure drift, the classic
+// benchmarks, the recommended schemes), taken from the checks' own numbers (Check::topic), never hand-typed;
 // and the order of the families, those with many routine checks (the scenes' section
 // properties) folded away after the rest.
 #include <string>
@@ -22,6 +22,7 @@ inline constexpr SummaryTopic kSummaryTopics[] = {
     {"reference", "Agreement with the references (KINSOL, IDA)"},
     {"energy", "Energy: conservation, dissipation and the ledger"},
     {"structure", "Structure: det R and orthogonality drift"},
+    {"literature", "Classic benchmarks of the literature (worst case of each)"},
     {"recommend", "Recommended schemes (`rodlab study recommend`, verified)"},
 };
 
