@@ -31,8 +31,9 @@ std::vector<SignalComponent> signal_components(const std::vector<double>& y, dou
     std::complex<double> p(1.0, 0.0);
     for (int k = 0; k < n; ++k, p *= z[i]) Z(k, i) = p;
   }
-  const Eigen::VectorXcd a =
-      Z.completeOrthogonalDecomposition().solve(Eigen::VectorXd::Map(y.data(), n).cast<std::complex<double>>());
+  const Eigen::VectorXcd samples =
+      Eigen::VectorXd::Map(y.data(), n).cast<std::complex<double>>();
+  const Eigen::VectorXcd a = Z.completeOrthogonalDecomposition().solve(samples);
   std::vector<SignalComponent> out;
   double largest = 0.0;
   for (int i = 0; i < order; ++i) {
@@ -42,7 +43,9 @@ std::vector<SignalComponent> signal_components(const std::vector<double>& y, dou
                    -std::log(std::abs(z[i])) / dt});
     largest = std::max(largest, out.back().amplitude);
   }
-  std::erase_if(out, [&](const SignalComponent& c) { return c.amplitude < relative_floor * largest; });
+  std::erase_if(out, [&](const SignalComponent& c) {
+    return c.amplitude < relative_floor * largest;
+  });
   std::sort(out.begin(), out.end(), [](const auto& p, const auto& q) {
     return p.frequency_hz < q.frequency_hz;
   });

@@ -13,7 +13,8 @@
 // and bisected.
 //
 // Torsion and extension: the wave equations G Jt theta'' = rho J theta_tt and
-// E A u'' = rho A u_tt, clamped-free: f_n = (2n - 1) / (4 L) sqrt(G Jt / (rho J)), resp. sqrt(E/rho).
+// E A u'' = rho A u_tt, clamped-free: f_n = (2n - 1) / (4 L) c with the wave speed
+// c = sqrt(G Jt / (rho J)), resp. sqrt(E / rho).
 #include <vector>
 
 namespace rodlab::validation::reference {

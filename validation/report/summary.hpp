@@ -1,7 +1,8 @@
 #pragma once
 // What the report leads with (docs/validation.md "The report"): the headline checks grouped by
 // topic (observed orders, agreement with the references, energy, structure drift, the classic
-// benchmarks, the recommended schemes), taken from the checks' own numbers (Check::topic), never hand-typed;
+// benchmarks, the recommended schemes), taken from the checks' own numbers (Check::topic),
+// never hand-typed;
 // and the order of the families, those with many routine checks (the scenes' section
 // properties) folded away after the rest.
 #include <string>
