@@ -104,8 +104,22 @@ SE3 StaticProblem::tip_target() const {
   // intermediate target is then reachable without stretch (an arc end for an arc target), unlike
   // the SE(3) geodesic between the reference tip and the target.
   const double L = length();
-  const Vector6 xi_eff = (base_.inverse() * *tip_target_).log() / L;
-  return base_ * SE3::exp(L * ((1.0 - load_factor_) * model_.xi_star() + load_factor_ * xi_eff));
+  const SE3 local = base_.inverse() * *tip_target_;
+  const Vector6 xi_eff = local.log() / L;
+  Vector6 xi_arc = model_.xi_star();
+  xi_arc.head<3>() = xi_eff.head<3>();  // the rotation part of the screw: log(R) / L
+  if (!model_.is_kirchhoff() || xi_arc == model_.xi_star())  // (no turn: a pure translation)
+    return base_ * SE3::exp(L * ((1.0 - load_factor_) * model_.xi_star() + load_factor_ * xi_eff));
+  // A straight Kirchhoff rod held at its full length has an indeterminate axial force, and the
+  // screw path above asks for stretch the rod cannot give (kinsol stalled at its start for
+  // buckled-column tips beyond 150 degrees; docs/statics.md). Its path leaves the start along
+  // exact equilibria instead: first the arcs of nu = nu* (zero force) that turn the tip to the
+  // target's rotation, then the tip moved straight to the target's position.
+  const Vector6& xs = model_.xi_star();
+  if (load_factor_ <= 0.5) return base_ * SE3::exp(L * (xs + 2.0 * load_factor_ * (xi_arc - xs)));
+  const Vector3 arc_tip = SE3::exp(L * xi_arc).translation();
+  const double t = 2.0 * load_factor_ - 1.0;
+  return base_ * SE3(local.rotation(), arc_tip + t * (local.translation() - arc_tip));
 }
 
 Vector6 StaticProblem::tip_residual(const SE3& g_tip, const Vector6& Lambda_tip) const {
