@@ -10,6 +10,7 @@
 
 #include "checks/bifurcation_load.hpp"
 #include "reference/buckling.hpp"
+#include "reference/cantilever_frequencies.hpp"
 #include "reference/planar_rod.hpp"
 
 namespace ref = rodlab::validation::reference;
@@ -86,6 +87,28 @@ BOOST_AUTO_TEST_CASE(planar_cantilever_has_timoshenkos_linear_deflection) {
   const double linear = q * std::pow(L, 4) / (8 * EI) + q * L * L / (2 * GA);
   BOOST_TEST(std::abs(-t.x / linear - 1.0) <= 1e-6);
   BOOST_TEST(std::abs(t.z - L) <= 1e-9);
+}
+
+// The Timoshenko cantilever's frequencies tend to Euler-Bernoulli's (beta L)^2 sqrt(EI/(rho A
+// L^4)) / (2 pi), beta L = 1.8751041, 4.6940911, 7.8547574, as shear and rotary inertia vanish;
+// and the Table 2.1 rod's (L / D = 10) lie below them (0.6, 3.8 and 8.4 %: the values scipy's
+// DOP853 shooting of the same equations gives, 4.398329, 26.661147, 71.133379 Hz).
+BOOST_AUTO_TEST_CASE(timoshenko_frequencies_tend_to_euler_bernoulli) {
+  const double L = 0.1, EI = 4.908738521e-4, rhoA = 0.0785398163;
+  const double eb = std::sqrt(EI / (rhoA * std::pow(L, 4))) / (2 * kPi);
+  const double beta[] = {1.8751040687, 4.6940911330, 7.8547574382};
+  // G A 4e4 times the Table 2.1 rod's and rho I 1e-5 of it: shear and rotary inertia lower the
+  // frequencies by about EI (beta / L)^2 / GA + rho I (beta / L)^2 / rho A < 3e-6 (mode 3).
+  const auto slender = ref::timoshenko_cantilever_frequencies({L, EI, 1e6, rhoA, 5e-12}, 3);
+  for (int i = 0; i < 3; ++i) {
+    const double ratio = slender[i] / (beta[i] * beta[i] * eb);
+    BOOST_TEST((ratio < 1.0 && ratio > 1.0 - 3e-6), i << ": " << ratio);
+  }
+  const auto stubby =
+      ref::timoshenko_cantilever_frequencies({L, EI, 25.918139, rhoA, 1000 * 4.908738521e-10}, 3);
+  const double scipy[] = {4.398328516825175, 26.661146954484167, 71.13337935306487};
+  for (int i = 0; i < 3; ++i) BOOST_TEST(std::abs(stubby[i] / scipy[i] - 1.0) <= 1e-8, i);
+  BOOST_TEST(std::abs(ref::clamped_free_wave_frequency(0.1, 1000.0, 2) - 7500.0) <= 1e-9);
 }
 
 // The measurement on a stiffness law with a known zero, including a response that buckles
