@@ -26,8 +26,9 @@ std::vector<double> sample(const std::vector<Sinusoid>& parts, double offset, in
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::vector<double> y(n, offset);
   for (int k = 0; k < n; ++k) {
+    const double t = k * dt;
     for (const auto& p : parts)
-      y[k] += p.amplitude * std::exp(-p.decay * k * dt) * std::cos(kTwoPi * p.hz * k * dt + p.phase);
+      y[k] += p.amplitude * std::exp(-p.decay * t) * std::cos(kTwoPi * p.hz * t + p.phase);
     y[k] += noise * gauss(rng);
   }
   return y;
