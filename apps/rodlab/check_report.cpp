@@ -132,8 +132,19 @@ ReportSection scene_section(const scene::Scene& scene) {
                              : "all six: bending, torsion, shear, extension"),
        ""});
   s.items.push_back({"length", "length", "L", scene.rod.length, "m"});
-  s.items.push_back(
-      {"reference_twist", "reference twist", "xi*", to_std(scene.rod.reference_twist), ""});
+  if (scene.rod.rest_spans.empty()) {
+    s.items.push_back(
+        {"reference_twist", "reference twist", "xi*", to_std(scene.rod.reference_twist), ""});
+  } else {
+    for (std::size_t k = 0; k < scene.rod.rest_spans.size(); ++k) {
+      const auto& span = scene.rod.rest_spans[k];
+      const std::string n = std::to_string(k + 1);
+      s.items.push_back({"rest_span_" + n + "_begin", "rest span " + n + " begins at", "s",
+                         span.begin, "m"});
+      s.items.push_back({"rest_span_" + n + "_strain", "rest span " + n + " strain", "xi*",
+                         to_std(span.xi_star), ""});
+    }
+  }
   s.items.push_back({"base", "base pose", "", describe(scene.base.pose), ""});
   if (const auto* clamped = std::get_if<scene::ClampedTip>(&scene.tip)) {
     s.items.push_back({"tip", "tip", "", "clamped at " + describe(clamped->pose), ""});

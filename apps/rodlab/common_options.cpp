@@ -219,6 +219,16 @@ std::string scene_dynamics_scheme(const scene::Scene& scene) {
 
 DynamicRun resolve_dynamic_solver(const SolveOptions& options, const scene::Scene& scene,
                                   std::string_view scene_scheme, std::string_view command) {
+  if (!scene.rod.rest_spans.empty()) {  // statics only, for now (issue #18)
+    io::SceneDiagnostic d;
+    d.source = scene.source_path.empty() ? options.scene_path : scene.source_path;
+    d.line = scene.rod.rest_spans_line;
+    d.column = scene.rod.rest_spans_column;
+    d.field = "rod.rest_strain.spans";
+    d.message = "the dynamics schemes do not solve a rest strain that changes along the rod yet "
+                "(`rodlab static` does)";
+    throw io::SceneError({d});
+  }
   DynamicRun run{chosen_scheme(options, scene, scene_scheme, "dynamics.scheme", Problem::dynamics,
                                command),
                  true,

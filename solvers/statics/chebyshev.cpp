@@ -255,16 +255,17 @@ class Collocation {
     const auto Lambda = rigid_wrench_profile(P_, all, nodes_ - 1);  // ascending, with duplicates
     VectorXd x(size());
     set_initial_extras(x);
-    const Vector6& xi_star = P_.model().xi_star();
     for (std::size_t e = 0; e < elements_.size(); ++e) {
       const Element& el = elements_[e];
+      const Vector6& xi_star = P_.model().xi_star(0.5 * (el.s.front() + el.s.back()));
       for (int i = 0; i < el.n; ++i) {
         double* xn = x.data() + 12 * (el.offset + i);
         node_theta(xn) = ((el.s[i] - el.s[0]) * xi_star).cwiseQuotient(theta_scale_);
         // The profile holds the value left of a breakpoint at both copies of an interface node;
         // the next element's first node is right of it, after a cable's entry.
         Vector6 La = Lambda[el.offset + i];
-        if (i == 0 && e > 0 && elements_[e - 1].entry_after) La += P_.entry_jump(el.s[0], xi_star);
+        if (i == 0 && e > 0 && elements_[e - 1].entry_after)
+          La += P_.entry_jump(el.s[0], P_.model().xi_star(el.s[0] - 1e-12 * P_.length()));
         node_lambda(xn) = La.cwiseQuotient(P_.wrench_scale());
       }
     }
@@ -304,7 +305,7 @@ class Collocation {
   /// Exact for a target at the end of a circular arc or helix.
   VectorXd constant_twist_guess() {
     const Vector6 xi = (P_.base().inverse() * P_.tip_target()).log() / P_.length();
-    Vector6 Lambda = P_.rod_wrench(xi);
+    Vector6 Lambda = P_.rod_wrench(xi, 0.0);  // (with rest-strain spans: the first span's)
     if (P_.model().is_kirchhoff()) Lambda.tail<3>().setZero();
     VectorXd x(size());
     set_initial_extras(x);
@@ -622,7 +623,7 @@ class Collocation {
         const Vector6 th = Vector6(values.row(j).head<6>().transpose()).cwiseProduct(theta_scale_);
         const Vector6 La = Vector6(values.row(j).tail<6>().transpose()).cwiseProduct(P_.wrench_scale());
         const double s = el.s.front() + el.half * (1.0 + el.op->mid[j]);
-        const Vector6 xi = el.mask ? P_.strain(La, s, el.mask) : P_.strain(La);
+        const Vector6 xi = P_.strain(La, s, el.mask);
         const SO3 R = charts_[e].rotation() * SO3::exp(th.head<3>());
         const Vector6 r_theta = Vector6(slopes.row(j).head<6>().transpose()) - theta_rate(el, th, xi);
         const Vector6 r_lambda = Vector6(slopes.row(j).tail<6>().transpose()) - lambda_rate(el, R, xi, La);
@@ -660,15 +661,16 @@ class Collocation {
   }
 
  private:
-  /// Where node i of an element evaluates the actuator paths: at its s, except the last node,
-  /// just inside the element (a routing's r' jumps at a knot, and the path gives right limits).
+  /// Where node i of an element evaluates the actuator paths and xi*: at its s, except the last
+  /// node, just inside the element (a routing's r' and xi* jump at a breakpoint, and both give
+  /// right limits).
   double probe(const Element& el, int i) const {
     return i + 1 < el.n ? el.s[i] : el.s[i] - 1e-12 * P_.length();
   }
   /// The strain at node i of an element: the tendon law with the element's actuators, the
   /// closed form xi* + K^-1 Lambda without.
   Vector6 node_strain(const Element& el, int i, const Vector6& La) const {
-    return el.mask ? P_.strain(La, probe(el, i), el.mask) : P_.strain(La);
+    return P_.strain(La, probe(el, i), el.mask);
   }
   /// The extra unknowns (the tail of x) into the problem.
   void set_extras(const VectorXd& x) {

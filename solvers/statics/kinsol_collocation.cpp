@@ -72,7 +72,7 @@ class Collocation {
   NodeData node(const ConstRef& x, int i) const { return node_from(x.segment<kState>(kState * i), i); }
 
   Vector6 strain_at(const Vector6& Lambda, double s, StaticProblem::Mask mask) const {
-    return mask ? P_.strain(Lambda, s, mask) : P_.strain(Lambda);
+    return P_.strain(Lambda, s, mask);
   }
 
   NodeData node_from(const State& xi_scaled, int i) const {
@@ -315,13 +315,14 @@ class Collocation {
   /// pull of cables entering at breakpoints); zero wrench for a clamped tip (its reaction is
   /// unknown; zero keeps the pose rows exact). Extra unknowns at their initial guess. Scaled.
   VectorXd reference_guess() {
-    const Vector6& xi_star = P_.model().xi_star();
+    const rod::RodModel& model = P_.model();
     const SE3& base = P_.base();
     VectorXd x(size());
     const auto z = P_.extra_initial_guess();
     for (int e = 0; e < extra_; ++e) x[kState * N_ + e] = z[e];
     set_extra(x);
-    auto rotation_at = [&](double s) { return base.rotation() * SO3::exp(s * Vector3(xi_star.head<3>())); };
+    auto rotation_at = [&](double s) { return base.rotation() * model.rest_pose(s).rotation(); };
+    Vector6 xi_star = model.xi_star();  // of the interval in progress (nodes at every break)
     auto dLambda = [&](double s, const Vector6& Lambda) {
       return P_.wrench_derivative(rotation_at(s), xi_star, Lambda);
     };
@@ -332,14 +333,15 @@ class Collocation {
       if (march && i < N_ - 1) {  // classical RK4 from s + h back to s
         const double h = h_[i];
         const double sb = s_[i + 1];
+        xi_star = model.xi_star(s + 0.5 * h);
         const Vector6 k1 = dLambda(sb, Lambda);
         const Vector6 k2 = dLambda(sb - 0.5 * h, Lambda - 0.5 * h * k1);
         const Vector6 k3 = dLambda(sb - 0.5 * h, Lambda - 0.5 * h * k2);
         const Vector6 k4 = dLambda(s, Lambda - h * k3);
         Lambda -= h * (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0;
-        if (breakpoint_[i]) Lambda -= P_.entry_jump(s, xi_star);
+        if (breakpoint_[i]) Lambda -= P_.entry_jump(s, model.xi_star(s - 1e-12 * L_));
       }
-      x.segment<kState>(kState * i) = scaled(i == 0 ? base : base * SE3::exp(s * xi_star), Lambda);
+      x.segment<kState>(kState * i) = scaled(i == 0 ? base : base * model.rest_pose(s), Lambda);
     }
     return x;
   }
@@ -351,7 +353,7 @@ class Collocation {
   VectorXd geodesic_guess() {
     const SE3& base = P_.base();
     const Vector6 xi_c = (base.inverse() * P_.tip_target()).log() / L_;
-    const Vector6 Lambda = P_.rod_wrench(xi_c);
+    const Vector6 Lambda = P_.rod_wrench(xi_c, 0.0);  // (rest-strain spans: the first span's)
     VectorXd x(size());
     const auto z = P_.extra_initial_guess();
     for (int e = 0; e < extra_; ++e) x[kState * N_ + e] = z[e];
@@ -389,7 +391,7 @@ class Collocation {
     const int intervals = N_ - 1;
     RODLAB_THROW_UNLESS(
         intervals >= stretches,
-        "kinsol: {} nodes cannot hold the {} actuator breakpoints (need at least {})", N_,
+        "kinsol: {} nodes cannot hold the {} breakpoints (need at least {})", N_,
         stretches - 1, stretches + 1);
     std::vector<double> ideal(stretches);
     std::vector<int> count(stretches);

@@ -19,7 +19,8 @@ void fill_static_result(const StaticProblem& problem, std::span<const double> s,
     // The strain at a node uses the actuators active just after it (just before, at the tip).
     const double probe = i + 1 < s.size() ? 0.5 * (s[i] + s[i + 1]) : s[i] - 1e-12 * problem.length();
     const auto mask = problem.has_actuators() ? problem.active_mask(probe) : 0U;
-    out.centerline[i] = {s[i], g[i], mask ? problem.strain(Lambda[i], s[i], mask) : problem.strain(Lambda[i])};
+    const double side = i + 1 < s.size() ? s[i] : s[i] - 1e-12 * problem.length();  // xi*(s)
+    out.centerline[i] = {s[i], g[i], problem.strain(Lambda[i], mask ? s[i] : side, mask)};
     const lie::Matrix3 R = g[i].rotation_matrix();
     out.max_det_deviation = std::max(out.max_det_deviation, std::abs(R.determinant() - 1.0));
     out.max_orthogonality_error =

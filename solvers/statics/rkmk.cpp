@@ -27,7 +27,7 @@ struct Stretch {
     return s < a + eps ? a + eps : (s > b - eps ? b - eps : s);
   }
   Vector6 strain(const Vector6& Lambda, double s) const {
-    return mask ? P.strain(Lambda, inside(s), mask) : P.strain(Lambda);
+    return P.strain(Lambda, inside(s), mask);  // inside: the sub-step's own xi* and offsets
   }
   Slope slope(const SO3& R, const Vector6& Lambda, double s) const {
     Slope k;
@@ -191,7 +191,8 @@ ShootResult shoot(const StaticProblem& problem, RkmkMethod method, int nodes, co
       if (b < s_end || (next_break < breaks.size() && breaks[next_break] == b)) {
         // Crossing a breakpoint: cables entering here add their pull (strain continuous).
         const auto left = problem.active_mask(b - 1e-12 * L);
-        const Vector6 xi_left = left ? problem.strain(node.Lambda, b, left) : problem.strain(node.Lambda);
+        const Vector6 xi_left = left ? problem.strain(node.Lambda, b, left)
+                                     : problem.strain(node.Lambda, b - 1e-12 * L);
         node.Lambda += problem.entry_jump(b, xi_left);
         ++next_break;
       }

@@ -22,11 +22,13 @@ using Eigen::VectorXd;
 /// Lambda is recorded at the ascending arclengths `samples` (steps are split there) into `out`.
 void march_back_undeformed(const StaticProblem& P, int steps, std::span<const double> samples,
                            std::span<Vector6> out) {
-  const Vector6& xi = P.model().xi_star();
+  const rod::RodModel& model = P.model();
   const double L = P.length(), h = L / steps;
-  auto rotation_at = [&](double s) { return P.base().rotation() * SO3::exp(s * xi.head<3>()); };
+  auto rotation_at = [&](double s) { return P.base().rotation() * model.rest_pose(s).rotation(); };
+  Vector6 xi = model.xi_star();  // the rest strain of the step in progress (steps split at breaks)
   auto f = [&](double s, const Vector6& Lambda) { return P.wrench_derivative(rotation_at(s), xi, Lambda); };
   auto rk4_back = [&](double s, double dh, Vector6& Lambda) {
+    xi = model.xi_star(s - 0.5 * dh);
     const Vector6 k1 = f(s, Lambda);
     const Vector6 k2 = f(s - 0.5 * dh, Lambda - 0.5 * dh * k1);
     const Vector6 k3 = f(s - 0.5 * dh, Lambda - 0.5 * dh * k2);

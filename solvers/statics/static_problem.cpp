@@ -67,6 +67,7 @@ StaticProblem::StaticProblem(rod::RodModel model, SE3 base)
   const double EI = std::min(K[0], K[1]);
   const double L = model_.length();
   wrench_scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
+  breakpoints_ = model_.rest_breaks();  // where xi* jumps: the schemes split their steps there
 }
 
 StaticProblem StaticProblem::from_scene(const scene::Scene& scene, double t) {
@@ -106,6 +107,15 @@ SE3 StaticProblem::tip_target() const {
   const double L = length();
   const SE3 local = base_.inverse() * *tip_target_;
   const Vector6 xi_eff = local.log() / L;
+  if (model_.has_rest_spans()) {  // the same blend span by span: sum (1 - f) l_k xi*_k + f L xi_eff
+    SE3 g = base_;
+    const auto& spans = model_.rest_spans();
+    for (std::size_t k = 0; k < spans.size(); ++k) {
+      const double l = (k + 1 < spans.size() ? spans[k + 1].begin : L) - spans[k].begin;
+      g = g * SE3::exp(l * ((1.0 - load_factor_) * spans[k].xi_star + load_factor_ * xi_eff));
+    }
+    return g;
+  }
   Vector6 xi_arc = model_.xi_star();
   xi_arc.head<3>() = xi_eff.head<3>();  // the rotation part of the screw: log(R) / L
   if (!model_.is_kirchhoff() || xi_arc == model_.xi_star())  // (no turn: a pure translation)
@@ -146,6 +156,9 @@ void StaticProblem::add_actuator(ActuatorTerm term) {
   // routing knots, so integrate knot to knot).
   std::vector<double> cuts{term.path.s0()};
   for (double k : term.path.knots()) cuts.push_back(k);
+  for (double b : model_.rest_breaks())  // xi* jumps there
+    if (b > term.path.s0() && b < term.path.s1()) cuts.push_back(b);
+  std::sort(cuts.begin() + 1, cuts.end());
   cuts.push_back(term.path.s1());
   double rest = 0.0;
   for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
@@ -156,7 +169,7 @@ void StaticProblem::add_actuator(ActuatorTerm term) {
       const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
       // evaluate just inside the segment at its ends, where r' is the segment's slope
       const double si = std::clamp(a + i * h, a + 1e-12 * h, cuts[c + 1] - 1e-12 * h);
-      sum += w * term.path.length_rate(si, model_.xi_star());
+      sum += w * term.path.length_rate(si, model_.xi_star(si));
     }
     rest += sum * h / 3.0;
   }
@@ -276,8 +289,8 @@ Matrix6 StaticProblem::strain_jacobian(const Vector6& xi, double s, Mask mask) c
 }
 
 Vector6 StaticProblem::strain(const Vector6& Lambda, double s, Mask mask) const {
-  if (mask == 0) return strain(Lambda);
-  const Vector6& xs = model_.xi_star();
+  if (mask == 0) return strain(Lambda, s);
+  const Vector6& xs = model_.xi_star(s);
   return solve_tendon_law(law_stiffness(s, mask), xs, Lambda, model_.is_kirchhoff(),
                           [&](const Vector6& xi, Vector6& r, Matrix6& J) {
                             for (std::size_t k = 0; k < actuators_.size(); ++k) {
@@ -296,7 +309,7 @@ Vector6 StaticProblem::rod_wrench(const Vector6& Lambda, const Vector6& xi, doub
     const ActuatorTerm& a = actuators_[k];
     W -= axial_force(static_cast<int>(k)) * a.path.unit_wrench(s, xi);
     if (a.kind == ActuatorKind::muscle)
-      W -= transported_stiffness(a.embedded_stiffness, a.path.offset(s)) * (xi - model_.xi_star());
+      W -= transported_stiffness(a.embedded_stiffness, a.path.offset(s)) * (xi - model_.xi_star(s));
   }
   return W;
 }

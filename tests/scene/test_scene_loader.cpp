@@ -490,3 +490,47 @@ BOOST_AUTO_TEST_CASE(rest_strain_forms) {
     BOOST_TEST(std::abs(rise - std::abs(pitch)) <= 1e-14, "rise per turn " << rise);
   }
 }
+
+BOOST_AUTO_TEST_CASE(rest_strain_spans) {
+  // rod.rest_strain.spans (issue #18): spans of six numbers, an arc (its angle is the span's own
+  // bend) and a helix, begun where the previous one ends; the model's xi*(s) and its rest pose
+  // (the product of the spans' exponentials, docs/scene-reference.md).
+  const auto scene = load_scene_from_string(
+      "schema: rodlab.scene/1\nrod:\n  length: 0.1\n"
+      "  section: {shape: circle, diameter: 0.01}\n"
+      "  material: {E: 1.0e6, G: 0.33e6, rho: 1000}\n"
+      "  rest_strain:\n    spans:\n"
+      "      - {length: 0.02, strain: [0, 0, 0, 0, 0, 1]}\n"
+      "      - {length: 0.05, arc: {angle: 0.5}}\n"
+      "      - {length: 0.03, helix: {radius: 0.02, pitch: 0.05}}\n"
+      "tip: {free: {}}\n",
+      "spans.yaml");
+  const auto& spans = scene.rod.rest_spans;
+  BOOST_REQUIRE(spans.size() == 3u);
+  BOOST_TEST(spans[0].begin == 0.0);
+  BOOST_TEST(std::abs(spans[1].begin - 0.02) <= 1e-15);
+  BOOST_TEST(std::abs(spans[2].begin - 0.07) <= 1e-15);
+  BOOST_TEST(std::abs(spans[1].xi_star[0] - 10.0) <= 1e-13);  // 0.5 rad over 0.05 m
+  const rod::RodModel model = scene.rod.to_model();
+  BOOST_TEST(model.has_rest_spans());
+  BOOST_TEST((model.xi_star(0.01) == spans[0].xi_star));
+  BOOST_TEST((model.xi_star(spans[1].begin) == spans[1].xi_star));  // a begin is its span's
+  BOOST_TEST((model.xi_star(0.1) == spans[2].xi_star));
+  BOOST_TEST((model.rest_breaks() == std::vector<double>{spans[1].begin, spans[2].begin}));
+  const lie::SE3 expected = lie::SE3::exp(0.02 * spans[0].xi_star) *
+                            lie::SE3::exp(0.05 * spans[1].xi_star) *
+                            lie::SE3::exp(0.03 * spans[2].xi_star);
+  const lie::SE3 tip = model.rest_pose(0.1);
+  BOOST_TEST((tip.translation() - expected.translation()).norm() <= 1e-16);
+  BOOST_TEST((tip.rotation_matrix() - expected.rotation_matrix()).norm() <= 1e-15);
+  // A uniform rod keeps one span: its xi* everywhere and exp(s xi*).
+  const rod::RodModel uniform = load_scene_from_string(
+      "schema: rodlab.scene/1\nrod:\n  length: 0.1\n"
+      "  section: {shape: circle, diameter: 0.01}\n"
+      "  material: {E: 1.0e6, G: 0.33e6, rho: 1000}\n  rest_strain: {arc: {radius: 0.05}}\n"
+      "tip: {free: {}}\n",
+      "arc.yaml").rod.to_model();
+  BOOST_TEST(!uniform.has_rest_spans());
+  BOOST_TEST((uniform.rest_pose(0.07).translation() ==
+              lie::SE3::exp(0.07 * uniform.xi_star()).translation()));
+}

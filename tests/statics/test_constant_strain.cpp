@@ -371,3 +371,91 @@ BOOST_AUTO_TEST_CASE(pre_curved_rest_shapes) {
                                                                           << " L, rotation "
                                                                           << worst_all.rotation);
 }
+
+// Case 5 (issue #18): a rest strain piecewise over spans (rod.rest_strain.spans). With the
+// spans' curvatures about the section's x axis and a body tip moment M e_x, the internal moment
+// is M e_x along the whole rod, so each span keeps a constant strain, its rest strain plus
+// M / (E I) about x, and the rod is the product of the spans' exponentials (the long-double
+// reference); the node twists are the spans' (at a span's begin, the span it begins). Unloaded,
+// a rod with a helical span rests at the product of exp(l_k xi*_k). The span ends at 0.03 and
+// 0.07 L lie between the nodes of every N tested: the schemes split their steps there.
+// Tolerances as case 4.
+BOOST_AUTO_TEST_CASE(rest_strain_spans) {
+  const double L = Table21::L;
+  struct Span {
+    double length;
+    Vector6 xi_star;
+  };
+  const auto arc = [](double kappa) { return (Vector6() << kappa, 0, 0, 0, 0, 1).finished(); };
+  const auto spans_model = [&](ModelKind kind, const std::vector<Span>& spans) {
+    std::vector<rod::RestSpan> rest;
+    double begin = 0.0;
+    for (const auto& s : spans) rest.push_back({begin, s.xi_star}), begin += s.length;
+    return rod::RodModel(L, rod::Circle{Table21::D},
+                         rod::Material{Table21::E, Table21::G, Table21::rho, 0.0}, kind, rest);
+  };
+  // g(s): the product of the spans' exponentials with their strains shifted by `bend` about x.
+  const auto reference = [](const std::vector<Span>& spans, double bend, double s) {
+    Eigen::Matrix4d g = Eigen::Matrix4d::Identity();
+    double begin = 0.0;
+    for (const auto& span : spans) {
+      const double l = std::clamp(s - begin, 0.0, span.length);
+      Vector6 xi = span.xi_star;
+      xi[0] += bend;
+      if (l > 0.0) g = g * expm_reference(l * xi);
+      begin += span.length;
+    }
+    return g;
+  };
+  const std::vector<Span> arcs{{0.3 * L, arc(0.0)}, {0.4 * L, arc(12.0)}, {0.3 * L, arc(-8.0)}};
+  const std::vector<Span> helical{{0.5 * L, (Vector6() << 6.0, 0, 4.0, 0, 0, 1).finished()},
+                                  {0.5 * L, arc(-5.0)}};
+  PoseError worst;
+  for (const ModelKind kind : {ModelKind::cosserat, ModelKind::kirchhoff}) {
+    for (const double m : {0.0, 0.5, -1.5}) {  // M L / (E I)
+      const double bend = m / L;              // M / (E I)
+      StaticProblem problem(spans_model(kind, arcs), SE3::identity());
+      problem.set_tip_wrench(loads::PointWrench{
+          wrench(Vector3(m * Table21::EI / L, 0, 0), Vector3::Zero()), WrenchFrame::body});
+      for (const auto& scheme : statics_schemes_under_test()) {
+        for (const int N : grid_for(scheme, kNodes)) {
+          const auto r = solve(problem, scheme.name, N);
+          if (!check_result(r, N)) continue;
+          double twist_error = 0.0;
+          for (std::size_t i = 0; i < r.centerline.size(); ++i) {
+            const auto& node = r.centerline[i];
+            const PoseError e = pose_error(node.pose, reference(arcs, bend, node.s));
+            worst.position = std::max(worst.position, e.position);
+            worst.rotation = std::max(worst.rotation, e.rotation);
+            BOOST_TEST(e.max() <= kConstantTwistTol,
+                       kind_name(kind) << " M L/EI = " << m << " " << describe(r) << " node " << i
+                                       << ": error " << e.max());
+            const double side = i + 1 < r.centerline.size() ? node.s : node.s - 1e-9 * L;
+            Vector6 xi = problem.model().xi_star(side);
+            xi[0] += bend;
+            twist_error = std::max(twist_error, (node.twist - xi).norm() / xi.norm());
+          }
+          BOOST_TEST(twist_error <= kTwistTol, describe(r) << " twist error " << twist_error);
+        }
+      }
+    }
+    const StaticProblem rest(spans_model(kind, helical), SE3::identity());
+    for (const auto& scheme : statics_schemes_under_test()) {
+      for (const int N : grid_for(scheme, kNodes)) {
+        const auto r = solve(rest, scheme.name, N);
+        if (!check_result(r, N)) continue;
+        for (const auto& node : r.centerline) {
+          const PoseError e = pose_error(node.pose, reference(helical, 0.0, node.s));
+          BOOST_TEST(e.max() <= kConstantTwistTol, kind_name(kind) << " helix and arc, unloaded "
+                                                                   << describe(r) << ": error "
+                                                                   << e.max());
+          worst.position = std::max(worst.position, e.position);
+          worst.rotation = std::max(worst.rotation, e.rotation);
+        }
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("rest-strain spans, worst node error: position " << worst.position
+                                                                     << " L, rotation "
+                                                                     << worst.rotation);
+}

@@ -1,6 +1,11 @@
 // rod: model, length, section, material, and the rest shape: reference_twist or rest_strain.
+#include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "scene_readers.hpp"
 
@@ -80,19 +85,15 @@ std::optional<lie::Vector6> read_twist(Checker& c, const Field& f) {
   return *xi;
 }
 
-/// rest_strain: six numbers, or a named shape of constant strain (docs/scene-reference.md):
-///   arc: {radius: R} or {angle: a}    curvature 1/R (= a / L) about the section's x axis
+/// A named shape of constant strain (docs/scene-reference.md) in the map f, over a length:
+///   arc: {radius: R} or {angle: a}    curvature 1/R (= a / length) about the section's x axis
 ///   helix: {radius: r, pitch: p}      curvature r / (r^2 + c^2) about x and torsion
 ///                                     c / (r^2 + c^2), c = p / (2 pi) (p < 0: left-handed)
-std::optional<lie::Vector6> read_rest_strain(Checker& c, const Field& f, double length) {
-  if (f.node.IsSequence()) return read_twist(c, f);
-  if (!c.is_map(f)) return std::nullopt;
-  const KeyCheck kc = c.keys(f, {"arc", "helix"}, "shape");
-  if (!kc) return std::nullopt;
-  const auto shape = c.exactly_one(f, {"arc", "helix"}, kc.unknown == 0);
-  if (!shape) return std::nullopt;
+/// `shape` is the key present ("arc" or "helix").
+std::optional<lie::Vector6> read_shape(Checker& c, const Field& f, std::string_view shape,
+                                       double length) {
   lie::Vector6 xi = rod::RodModel::straight_twist();
-  if (*shape == "arc") {
+  if (shape == "arc") {
     const Field arc = Checker::child(f, "arc");
     if (!c.is_map(arc) || !c.keys(arc, {"radius", "angle"})) return std::nullopt;
     const auto given = c.exactly_one(arc, {"radius", "angle"}, true);
@@ -120,6 +121,71 @@ std::optional<lie::Vector6> read_rest_strain(Checker& c, const Field& f, double 
   return xi;
 }
 
+/// One span of rest_strain.spans: its length and exactly one of strain (six numbers), arc or
+/// helix (an arc's angle is the span's own bend). Returns the span and its length.
+std::optional<std::pair<rod::RestSpan, double>> read_span(Checker& c, const Field& f,
+                                                          double begin) {
+  if (!c.is_map(f) || !c.keys(f, {"length", "strain", "arc", "helix"})) return std::nullopt;
+  const auto length = c.number(c.require(f, "length"), Range::positive());
+  const auto form = c.exactly_one(f, {"strain", "arc", "helix"}, true);
+  if (!length || !form) return std::nullopt;
+  const std::string name(*form);
+  const auto xi = name == "strain" ? read_twist(c, Checker::child(f, name))
+                                   : read_shape(c, f, name, *length);
+  if (!xi) return std::nullopt;
+  return std::pair{rod::RestSpan{begin, *xi}, *length};
+}
+
+/// rest_strain.spans: a list of spans whose lengths add up to the rod's.
+std::optional<std::vector<rod::RestSpan>> read_spans(Checker& c, const Field& f, double length) {
+  const auto items = c.list(f, 1);
+  if (!items) return std::nullopt;
+  std::vector<rod::RestSpan> spans;
+  double begin = 0.0;
+  bool ok = true;
+  for (const Field& item : *items) {
+    if (auto span = read_span(c, item, begin)) {
+      spans.push_back(span->first);
+      begin += span->second;
+    } else {
+      ok = false;
+    }
+  }
+  if (!ok || !(length > 0.0)) return std::nullopt;
+  if (std::abs(begin - length) > 1e-9 * length) {
+    c.error(f, "the spans' lengths add up to " + format_number(begin) +
+                   " m, not the rod's length " + format_number(length) + " m");
+    return std::nullopt;
+  }
+  return spans;
+}
+
+/// rest_strain: six numbers, a named shape of constant strain, or spans.
+bool read_rest_strain(Checker& c, const Field& f, double length, scene::Rod& rod) {
+  if (f.node.IsSequence()) {
+    const auto xi = read_twist(c, f);
+    if (xi) rod.reference_twist = *xi;
+    return xi.has_value();
+  }
+  if (!c.is_map(f)) return false;
+  const KeyCheck kc = c.keys(f, {"arc", "helix", "spans"}, "shape");
+  if (!kc) return false;
+  const auto shape = c.exactly_one(f, {"arc", "helix", "spans"}, kc.unknown == 0);
+  if (!shape) return false;
+  if (*shape == "spans") {
+    const Field field = Checker::child(f, "spans");
+    auto spans = read_spans(c, field, length);
+    if (!spans) return false;
+    rod.rest_spans = std::move(*spans);
+    rod.rest_spans_line = field.mark.line + 1;
+    rod.rest_spans_column = field.mark.column + 1;
+    return true;
+  }
+  const auto xi = read_shape(c, f, *shape, length);
+  if (xi) rod.reference_twist = *xi;
+  return xi.has_value();
+}
+
 }  // namespace
 
 scene::Rod read_rod(Checker& c, const Field& f) {
@@ -137,9 +203,11 @@ scene::Rod read_rod(Checker& c, const Field& f) {
   const auto rest = c.exactly_one(f, {"reference_twist", "rest_strain"}, false);
   if (!rest) return r;
   const Field shape = Checker::child(f, *rest);
-  if (auto xi = *rest == "reference_twist" ? read_twist(c, shape)
-                                           : read_rest_strain(c, shape, length.value_or(0.0)))
+  if (*rest == "rest_strain") {
+    read_rest_strain(c, shape, length.value_or(0.0), r);
+  } else if (auto xi = read_twist(c, shape)) {
     r.reference_twist = *xi;
+  }
   return r;
 }
 

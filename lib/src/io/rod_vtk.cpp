@@ -29,7 +29,8 @@ VtkPolyData rod_polydata(const scene::Scene& scene,
     d1[j] = R.col(0), d2[j] = R.col(1), d3[j] = R.col(2);
     kappa[j] = c.twist.head<3>();
     nu[j] = c.twist.tail<3>();
-    const lie::Vector6 wrench = model.K_diag().cwiseProduct(c.twist - model.xi_star());  // (2.28)
+    // (2.28); xi*(s): at a rest-strain span begin, the span it begins
+    const lie::Vector6 wrench = model.K_diag().cwiseProduct(c.twist - model.xi_star(c.s));
     m[j] = R * wrench.head<3>();
     f[j] = R * wrench.tail<3>();
     if (!velocities.empty()) {

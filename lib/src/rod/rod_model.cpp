@@ -1,5 +1,6 @@
 #include "rodlab/rod/rod_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -38,6 +39,40 @@ RodModel::RodModel(double length, const Section& section, const Material& materi
   // torsion constant like K does (identical to the thesis's J for circles and tubes).
   V_ << 3 * alpha * p.Ix, 3 * alpha * p.Iy, alpha * p.Jt, alpha * p.A, alpha * p.A, 3 * alpha * p.A;
   K_inv_ = K_.cwiseInverse();
+  spans_ = {RestSpan{0.0, xi_star_}};
+}
+
+RodModel::RodModel(double length, const Section& section, const Material& material, ModelKind kind,
+                   std::vector<RestSpan> spans)
+    : RodModel(length, section, material, kind,
+               spans.empty() ? straight_twist() : spans.front().xi_star) {
+  RODLAB_THROW_UNLESS(!spans.empty() && spans.front().begin == 0.0,
+                      "rest-strain spans must start at s = 0");
+  for (std::size_t k = 0; k < spans.size(); ++k) {
+    const RestSpan& span = spans[k];
+    RODLAB_THROW_UNLESS(span.xi_star.allFinite() && span.xi_star.tail<3>().norm() > 0.0,
+                        "rest-strain span {} needs a non-zero linear part nu*", k + 1);
+    RODLAB_THROW_UNLESS(span.begin < length && (k == 0 || span.begin > spans[k - 1].begin),
+                        "rest-strain span {} begins at s = {:g}, not after the previous span "
+                        "and before the rod's end",
+                        k + 1, span.begin);
+  }
+  spans_ = std::move(spans);
+}
+
+std::vector<double> RodModel::rest_breaks() const {
+  std::vector<double> breaks;
+  for (std::size_t k = 1; k < spans_.size(); ++k) breaks.push_back(spans_[k].begin);
+  return breaks;
+}
+
+lie::SE3 RodModel::rest_pose(double s) const {
+  lie::SE3 g = lie::SE3::identity();
+  for (std::size_t k = 0; k < spans_.size() && spans_[k].begin < s; ++k) {
+    const double end = k + 1 < spans_.size() ? std::min(s, spans_[k + 1].begin) : s;
+    g = g * lie::SE3::exp((end - spans_[k].begin) * spans_[k].xi_star);
+  }
+  return g;
 }
 
 }  // namespace rodlab::rod

@@ -3,8 +3,11 @@
 //   K = diag(E Ix, E Iy, G Jt, G A, G A, E A)          (2.28)
 //   M = rho diag(Ix, Iy, J, A, A, A)                   (3.5)
 //   V = alpha diag(3 Ix, 3 Iy, J, A, A, 3 A)           (3.10), Trouton ratio 3 for extension
-// with the reference twist xi* (constant along s; straight rod: [0 0 0 0 0 1]).
+// with the reference twist xi* (the rest strain; straight rod: [0 0 0 0 0 1]), constant along s
+// or piecewise constant over spans (issue #18: rod.rest_strain.spans).
 // model kirchhoff holds nu = nu* (3.45): only the angular strains are free.
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "rodlab/lie/se3.hpp"
@@ -18,6 +21,12 @@ using lie::Vector6;
 
 enum class ModelKind { cosserat, kirchhoff };
 
+/// A stretch of constant rest strain: from `begin` (arclength) to the next span's begin, or L.
+struct RestSpan {
+  double begin = 0.0;
+  Vector6 xi_star;
+};
+
 class RodModel {
  public:
   /// Throws std::invalid_argument for a non-positive length or modulus, a bad section, or
@@ -25,6 +34,11 @@ class RodModel {
   RodModel(double length, const Section& section, const Material& material,
            ModelKind kind = ModelKind::cosserat,
            const Vector6& reference_twist = straight_twist());
+
+  /// A rest strain piecewise constant over spans: spans.front().begin == 0, begins ascending
+  /// and below the length. Throws std::invalid_argument otherwise, or for a span whose nu* is 0.
+  RodModel(double length, const Section& section, const Material& material, ModelKind kind,
+           std::vector<RestSpan> spans);
 
   static Vector6 straight_twist() { return (Vector6() << 0, 0, 0, 0, 0, 1).finished(); }
 
@@ -34,7 +48,23 @@ class RodModel {
   ModelKind kind() const { return kind_; }
   bool is_kirchhoff() const { return kind_ == ModelKind::kirchhoff; }
   const SectionProperties& properties() const { return props_; }
+  /// The rest strain of a uniform rod (of the first span when it has several).
   const Vector6& xi_star() const { return xi_star_; }
+  /// The rest strain of the span that holds s (a span's begin belongs to it).
+  const Vector6& xi_star(double s) const {
+    if (spans_.size() == 1) return xi_star_;
+    std::size_t k = 0;
+    while (k + 1 < spans_.size() && spans_[k + 1].begin <= s) ++k;
+    return spans_[k].xi_star;
+  }
+  /// Whether the rest strain changes along s (more than one span).
+  bool has_rest_spans() const { return spans_.size() > 1; }
+  const std::vector<RestSpan>& rest_spans() const { return spans_; }
+  /// The span begins inside (0, L), where xi* jumps.
+  std::vector<double> rest_breaks() const;
+  /// The rest shape at s relative to the base: the product of exp(l_k xi*_k) over the spans
+  /// up to s.
+  lie::SE3 rest_pose(double s) const;
 
   /// Diagonals of K, M, V, and of K^-1.
   const Vector6& K_diag() const { return K_; }
@@ -55,6 +85,7 @@ class RodModel {
   ModelKind kind_;
   SectionProperties props_;
   Vector6 xi_star_, K_, M_, V_, K_inv_;
+  std::vector<RestSpan> spans_;  ///< one span for a uniform rod
 };
 
 }  // namespace rodlab::rod

@@ -33,8 +33,15 @@ struct Rod {
   rod::Section section;
   rod::Material material;
   Vector6 reference_twist = rod::RodModel::straight_twist();
+  /// rest_strain.spans: the rest strain piecewise over spans (empty: reference_twist along the
+  /// whole rod).
+  std::vector<rod::RestSpan> rest_spans;
+  int rest_spans_line = 0, rest_spans_column = 0;  ///< where the scene gives them (1-based)
 
-  rod::RodModel to_model() const { return {length, section, material, model, reference_twist}; }
+  rod::RodModel to_model() const {
+    if (!rest_spans.empty()) return {length, section, material, model, rest_spans};
+    return {length, section, material, model, reference_twist};
+  }
 };
 
 struct Base {

@@ -26,6 +26,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -263,7 +264,14 @@ class DynamicProblem {
                                   double s) const;
 
  private:
-  DynamicProblem(rod::RodModel model, SE3 base) : model_(std::move(model)), base_(base) {}
+  /// Throws std::invalid_argument for a rod with rest-strain spans: the statics solve them, the
+  /// dynamics schemes not yet (issue #18).
+  DynamicProblem(rod::RodModel model, SE3 base) : model_(std::move(model)), base_(base) {
+    if (model_.has_rest_spans())
+      throw std::invalid_argument(
+          "rod.rest_strain.spans: the dynamics schemes do not solve a rest strain that changes "
+          "along the rod yet (the statics schemes do; issue #18)");
+  }
 
   rod::RodModel model_;
   SE3 base_;

@@ -66,8 +66,8 @@ class StaticProblem {
   bool tip_clamped() const { return tip_target_.has_value(); }
   /// The clamped tip's target at the current load factor.
   SE3 tip_target() const;
-  /// Reference (unloaded) pose of the tip, base * exp(L xi*).
-  SE3 reference_tip() const { return base_ * SE3::exp(length() * model_.xi_star()); }
+  /// Reference (unloaded) pose of the tip, base * exp(L xi*) (over the spans: base * g*(L)).
+  SE3 reference_tip() const { return base_ * model_.rest_pose(length()); }
 
   // --- actuators ------------------------------------------------------------------------
   static constexpr int kMaxActuators = 16;
@@ -76,7 +76,8 @@ class StaticProblem {
   bool has_actuators() const { return !actuators_.empty(); }
   /// Actuators active on a stretch of s that contains s_mid and no breakpoint.
   Mask active_mask(double s_mid) const;
-  /// Span ends and routing knots inside (0, L), sorted: where the integrators split steps.
+  /// Actuator span ends, routing knots and rest-strain span begins inside (0, L), sorted: where
+  /// the integrators split steps (and evaluate xi*(s) strictly inside each piece).
   const std::vector<double>& breakpoints() const { return breakpoints_; }
   /// Axial force F of actuator k at the current load factor and unknowns.
   double axial_force(int k) const;
@@ -111,10 +112,13 @@ class StaticProblem {
   /// The rod's own internal wrench (without the actuators') at s.
   Vector6 rod_wrench(const Vector6& Lambda, const Vector6& xi, double s, Mask mask) const;
 
-  /// Strain from internal wrench without actuators: xi = xi* + K^-1 Lambda (Kirchhoff: nu = nu*).
-  Vector6 strain(const Vector6& Lambda) const {
-    Vector6 xi = model_.xi_star() + model_.K_inv_diag().cwiseProduct(Lambda);
-    if (model_.is_kirchhoff()) xi.tail<3>() = model_.xi_star().tail<3>();
+  /// Strain from internal wrench without actuators at s: xi = xi*(s) + K^-1 Lambda (Kirchhoff:
+  /// nu = nu*(s)). At a rest-strain span begin s belongs to the span it begins; a scheme that
+  /// needs the other side passes an s inside it.
+  Vector6 strain(const Vector6& Lambda, double s) const {
+    const Vector6& xs = model_.xi_star(s);
+    Vector6 xi = xs + model_.K_inv_diag().cwiseProduct(Lambda);
+    if (model_.is_kirchhoff()) xi.tail<3>() = xs.tail<3>();
     return xi;
   }
   /// d xi / d Lambda of strain() above, a diagonal: K^-1 (Kirchhoff: zero on nu).
@@ -123,9 +127,9 @@ class StaticProblem {
     if (model_.is_kirchhoff()) slope.tail<3>().setZero();
     return slope;
   }
-  /// Internal wrench of the rod from strain: K (xi - xi*).
-  Vector6 rod_wrench(const Vector6& xi) const {
-    return model_.K_diag().cwiseProduct(xi - model_.xi_star());
+  /// Internal wrench of the rod from strain at s: K (xi - xi*(s)).
+  Vector6 rod_wrench(const Vector6& xi, double s) const {
+    return model_.K_diag().cwiseProduct(xi - model_.xi_star(s));
   }
 
   /// External distributed wrench in the body frame at a section with rotation R.
