@@ -1,11 +1,15 @@
 #include "common_options.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <string_view>
 #include <system_error>
 
 #include "rodlab/check.hpp"
 #include "rodlab/io/result_writer.hpp"
 #include "rodlab/io/text_format.hpp"
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 
 #include "errors.hpp"
@@ -217,18 +221,34 @@ std::string scene_dynamics_scheme(const scene::Scene& scene) {
   return solvers::dynamics::DynamicSolveOptions{}.scheme;
 }
 
-DynamicRun resolve_dynamic_solver(const SolveOptions& options, const scene::Scene& scene,
-                                  std::string_view scene_scheme, std::string_view command) {
-  if (!scene.rod.rest_spans.empty()) {  // statics only, for now (issue #18)
+namespace {
+
+/// Rest-strain spans (issue #18): solved by ida and implicit-midpoint-collocation when every
+/// span begins on a node; otherwise a scene error at rod.rest_strain.spans, before anything runs.
+void check_rest_spans(const SolveOptions& options, const scene::Scene& scene,
+                      const DynamicRun& run) {
+  if (scene.rod.rest_spans.empty()) return;
+  const std::string_view name = run.scheme.name;
+  const bool supported = name == "ida" || name == "implicit-midpoint-collocation";
+  try {
+    solvers::dynamics::DynamicProblem::from_scene(scene).require_rest_spans_on_grid(
+        run.solve.nodes, name, supported);
+  } catch (const std::invalid_argument& e) {
     io::SceneDiagnostic d;
     d.source = scene.source_path.empty() ? options.scene_path : scene.source_path;
     d.line = scene.rod.rest_spans_line;
     d.column = scene.rod.rest_spans_column;
     d.field = "rod.rest_strain.spans";
-    d.message = "the dynamics schemes do not solve a rest strain that changes along the rod yet "
-                "(`rodlab static` does)";
+    const std::string what = e.what(), prefix = "rod.rest_strain.spans: ";
+    d.message = what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what;
     throw io::SceneError({d});
   }
+}
+
+}  // namespace
+
+DynamicRun resolve_dynamic_solver(const SolveOptions& options, const scene::Scene& scene,
+                                  std::string_view scene_scheme, std::string_view command) {
   DynamicRun run{chosen_scheme(options, scene, scene_scheme, "dynamics.scheme", Problem::dynamics,
                                command),
                  true,
@@ -251,6 +271,7 @@ DynamicRun resolve_dynamic_solver(const SolveOptions& options, const scene::Scen
     solve.variational_step =
         *solvers::dynamics::variational_step_from_name(*options.variational_step);
   solve.max_wall_time = options.max_wall_time.value_or(0.0);
+  check_rest_spans(options, scene, run);
   return run;
 }
 

@@ -84,8 +84,7 @@ Plant::Plant(const scene::Scene& scene, const PlantOptions& options)
                                       rod::TipSupport::free);
   const double T = 1.0 / c.first_bending_frequency_hz;
   state_scale_.resize(stepper_->tangent_size());
-  const dynamics::StaggeredTangent layout(options.solver.nodes, problem_->model().xi_star(),
-                                          problem_->is_kirchhoff());
+  const dynamics::StaggeredTangent layout(options.solver.nodes, problem_->model());
   layout.fill(1.0 / L, 1e-2, 1.0 / T, L / T,
               std::span<double>(state_scale_.data(), state_scale_.size()));
 }

@@ -176,7 +176,7 @@ double DynamicProblem::actuator_length_change(const Vector6& xi_old, const Vecto
 Vector6 DynamicProblem::embedded_wrench(const Vector6& xi, const Vector6& xi_dot, double s) const {
   Vector6 W = Vector6::Zero();
   if (!muscles_) return W;
-  const Vector6 d = xi - model_.xi_star();
+  const Vector6 d = xi - model_.xi_star(s);
   for (const auto& a : actuators_) {
     if (!a.embedded || !a.path.active(s)) continue;
     const Vector3 r = a.path.offset(s);
@@ -287,6 +287,25 @@ Vector6 DynamicProblem::entry_load(double s_entry, const Vector6& xi, const Forc
     if (a.enters_from_outside && a.path.s0() == s_entry) W -= F[k] * a.path.unit_wrench(s_entry, xi);
   }
   return W;
+}
+
+void DynamicProblem::require_rest_spans_on_grid(int nodes, std::string_view scheme,
+                                                bool supported) const {
+  if (!model_.has_rest_spans()) return;
+  if (!supported)
+    throw std::invalid_argument(rodlab::format(
+        "rod.rest_strain.spans: {} does not solve a rest strain that changes along the rod yet; "
+        "ida and implicit-midpoint-collocation do (issue #18)",
+        scheme));
+  const double ds = length() / (nodes - 1);
+  for (double b : model_.rest_breaks()) {
+    const double k = b / ds;
+    if (std::abs(k - std::round(k)) > 1e-9 * std::max(1.0, k))
+      throw std::invalid_argument(rodlab::format(
+          "rod.rest_strain.spans: the span that begins at s = {:g} m does not begin on a node of "
+          "{}'s {} nodes (spacing {:g} m); choose N so that every span begins on a node",
+          b, scheme, nodes, ds));
+  }
 }
 
 }  // namespace rodlab::solvers::dynamics

@@ -23,13 +23,16 @@ double kinetic_energy(const rod::RodModel& model, std::span<const Vector6> eta, 
 
 double strain_energy_segments(const rod::RodModel& model, std::span<const Vector6> xi, double ds) {
   double sum = 0.0;
-  for (const Vector6& x : xi) sum += rod::strain_energy_density(model, x);
+  for (std::size_t j = 0; j < xi.size(); ++j)
+    sum += rod::strain_energy_density(model, xi[j], (static_cast<double>(j) + 0.5) * ds);
   return sum * ds;
 }
 
 double strain_energy_nodes(const rod::RodModel& model, std::span<const Vector6> xi, double ds) {
   return trapezoid(xi.size(), ds,
-                   [&](std::size_t j) { return rod::strain_energy_density(model, xi[j]); });
+                   [&](std::size_t j) {
+                     return rod::strain_energy_density(model, xi[j], static_cast<double>(j) * ds);
+                   });
 }
 
 double gravity_energy(const DynamicProblem& problem, std::span<const SE3> g, double ds) {

@@ -44,6 +44,7 @@ RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem
   const int n = options.nodes;
   const double ds = problem.length() / (n - 1);
   RestState state{std::vector<SE3>(n), std::vector<Vector6>(n, problem.model().xi_star())};
+  for (int j = 0; j < n; ++j) state.xi[j] = problem.model().xi_star(j * ds);  // spans: node's
   if (options.initial == scene::Initial::straight) {
     if (problem.tip_clamped()) {
       const double miss = problem.clamp_mismatch(problem.reference_tip()).lpNorm<Eigen::Infinity>();

@@ -23,7 +23,8 @@ class StaggeredPaths {
     const std::size_t m = which_.size();
     weight_.assign(m * (n_ - 1), 0.0);
     rest_.assign(m, 0.0);
-    const std::vector<lie::Vector6> reference(n_ - 1, problem.model().xi_star());
+    std::vector<lie::Vector6> reference(n_ - 1);  // each segment's rest strain
+    for (int j = 0; j + 1 < n_; ++j) reference[j] = problem.model().xi_star((j + 0.5) * ds_);
     for (std::size_t e = 0; e < m; ++e) {
       for (int j = 0; j + 1 < n_; ++j)
         weight_[e * (n_ - 1) + j] = problem.span_overlap(which_[e], j * ds_, (j + 1) * ds_);

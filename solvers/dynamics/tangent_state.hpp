@@ -4,16 +4,22 @@
 // (j = 0..N-2; Kirchhoff rods: the angular part only, nu = nu* is held) followed by the node
 // velocities eta_j (j = 1..N-1; the base is fixed). Private to solvers/dynamics.
 #include <span>
+#include <vector>
 
 #include "rodlab/check.hpp"
 #include "rodlab/lie/se3.hpp"
+#include "rodlab/rod/rod_model.hpp"
 
 namespace rodlab::solvers::dynamics {
 
 class StaggeredTangent {
  public:
-  StaggeredTangent(int nodes, const lie::Vector6& xi_star, bool kirchhoff)
-      : nodes_(nodes), strain_dim_(kirchhoff ? 3 : 6), xi_star_(xi_star) {}
+  /// xi* of each segment from the model (rest-strain spans: the span that holds it).
+  StaggeredTangent(int nodes, const rod::RodModel& model)
+      : nodes_(nodes), strain_dim_(model.is_kirchhoff() ? 3 : 6), xi_star_(nodes - 1) {
+    const double ds = model.length() / (nodes - 1);
+    for (int j = 0; j + 1 < nodes; ++j) xi_star_[j] = model.xi_star((j + 0.5) * ds);
+  }
 
   int size() const { return (nodes_ - 1) * (strain_dim_ + 6); }
 
@@ -23,7 +29,7 @@ class StaggeredTangent {
     check(x.size());
     std::size_t i = 0;
     for (int j = 0; j + 1 < nodes_; ++j)
-      for (int c = 0; c < strain_dim_; ++c) x[i++] = xi[j][c] - xi_star_[c];
+      for (int c = 0; c < strain_dim_; ++c) x[i++] = xi[j][c] - xi_star_[j][c];
     for (int j = 1; j < nodes_; ++j)
       for (int c = 0; c < 6; ++c) x[i++] = eta[j][c];
   }
@@ -84,7 +90,7 @@ class StaggeredTangent {
 
   int nodes_;
   int strain_dim_;
-  lie::Vector6 xi_star_;
+  std::vector<lie::Vector6> xi_star_;  ///< per segment
 };
 
 }  // namespace rodlab::solvers::dynamics

@@ -53,9 +53,12 @@ double variational_max_frequency(const rod::RodModel& model, int nodes) {
   if (nodes < 2) throw std::invalid_argument("nodes must be >= 2");
   const double ds = model.length() / (nodes - 1);
   const Vector6 m_inv_sqrt = model.M_diag().cwiseSqrt().cwiseInverse();
-  return max_frequency(model.K(), model.xi_star(), ds, [&](const Matrix6c& S) {
-    return Matrix6c(m_inv_sqrt.asDiagonal() * S * m_inv_sqrt.asDiagonal());
-  });
+  double omega = 0.0;  // the largest over the rest-strain spans (one for a uniform rod)
+  for (const auto& span : model.rest_spans())
+    omega = std::max(omega, max_frequency(model.K(), span.xi_star, ds, [&](const Matrix6c& S) {
+                       return Matrix6c(m_inv_sqrt.asDiagonal() * S * m_inv_sqrt.asDiagonal());
+                     }));
+  return omega;
 }
 
 double variational_max_frequency(const DynamicProblem& problem, int nodes) {
@@ -69,16 +72,19 @@ double variational_max_frequency(const DynamicProblem& problem, int nodes) {
   const auto M = problem.node_inertia(nodes);
   double omega = 0.0;
   lie::Matrix6 K_last, M_last;
+  Vector6 xs_last;
   for (int j = 0; j + 1 < nodes; ++j) {
     const lie::Matrix6 K = model.K() + problem.embedded_stiffness((j + 0.5) * ds);
+    const Vector6& xs = model.xi_star((j + 0.5) * ds);  // the segment's span
     for (const lie::Matrix6& Mj : {M[j], M[j + 1]}) {
-      if (j > 0 && K == K_last && Mj == M_last) continue;
+      if (j > 0 && K == K_last && Mj == M_last && xs == xs_last) continue;
       K_last = K;
       M_last = Mj;
+      xs_last = xs;
       // W = L^-1 for M = L L^T: W S W^H has the eigenvalues of M^-1 S.
       const lie::Matrix6 W = Mj.llt().matrixL().solve(lie::Matrix6::Identity());
       const Matrix6c Wc = W.cast<std::complex<double>>();
-      omega = std::max(omega, max_frequency(K, model.xi_star(), ds, [&](const Matrix6c& S) {
+      omega = std::max(omega, max_frequency(K, xs, ds, [&](const Matrix6c& S) {
                          return Matrix6c(Wc * S * Wc.adjoint());
                        }));
     }

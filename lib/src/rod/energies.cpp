@@ -4,8 +4,8 @@
 
 namespace rodlab::rod {
 
-double strain_energy_density(const RodModel& model, const Vector6& xi) {
-  const Vector6 d = xi - model.xi_star();
+double strain_energy_density(const RodModel& model, const Vector6& xi, double s) {
+  const Vector6 d = xi - model.xi_star(s);
   return 0.5 * d.dot(model.K_diag().cwiseProduct(d));  // (2.28)
 }
 
@@ -31,6 +31,7 @@ double integrate_trapezoid(std::span<const double> f, double ds) {
 }
 
 lie::SE3 reference_pose(const RodModel& model, const lie::SE3& base, double s) {
+  if (model.has_rest_spans()) return base * model.rest_pose(s);
   return base * lie::SE3::exp(s * model.xi_star());
 }
 

@@ -45,7 +45,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
       : rod_(problem, options.nodes, "implicit-midpoint-collocation", true),
         kinsol_(constrained() ? rod_.constrained_pattern() : rod_.pattern(false),
                 /*keep_factorisation=*/true),
-        tangent_(options.nodes, problem.model().xi_star(), problem.is_kirchhoff()) {
+        tangent_(options.nodes, problem.model()) {
     if (!(options.tol > 0.0))
       throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");
     RODLAB_THROW_UNLESS(options.max_iterations >= 1 && options.max_setup_calls >= 1 &&
@@ -312,10 +312,10 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     std::copy(eta.begin(), eta.end(), eta_move_.begin());
     tangent_.add(dx, xi_move_, eta_move_);
     const bool kirchhoff = rod_.kirchhoff();
-    const Vector3 nu_star = rod_.problem().model().xi_star().tail<3>();
+    const auto& model = rod_.problem().model();
     g_move_[0] = rod_.poses()[0];
     for (std::size_t j = 0; j < xi_move_.size(); ++j) {
-      if (kirchhoff) xi_move_[j].tail<3>() = nu_star;
+      if (kirchhoff) xi_move_[j].tail<3>() = model.xi_star((j + 0.5) * rod_.ds()).tail<3>();
       g_move_[j + 1] = g_move_[j] * SE3::exp(rod_.ds() * xi_move_[j]);
     }
     rod_.pack_nodes(g_move_, eta_move_, y_);

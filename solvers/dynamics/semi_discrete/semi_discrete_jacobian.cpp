@@ -65,7 +65,7 @@ void SemiDiscreteRod::linearise_segment(int j, SegmentLinearisation& out) const 
   const bool actuators = P_.has_actuators();
   // (3.10) without muscles (analytic_jacobian()): the rod's wrench and the actuators' A(xi)
   const Vector6 act = actuators ? Vector6(P_.actuator_wrench(xi_[j], s_mid, F_)) : Vector6::Zero();
-  const Vector6 sigma = P_.rod_wrench(xi_[j], xi_dot_[j]) + act;
+  const Vector6 sigma = P_.rod_wrench(xi_[j], xi_dot_[j], s_mid) + act;
   // dA/dxi of the actuators' F_k c_k(xi), by central differences in xi.
   Matrix6 dA_dxi = Matrix6::Zero();
   if (actuators) {

@@ -65,7 +65,7 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
     for (int j = 0; j + 1 < n_; ++j) {
       const double o = problem.span_overlap(unknown_act_[e], j * ds_, (j + 1) * ds_);
       seg_weight_[e * (n_ - 1) + j] = o;
-      rest_[e] += o * act.path.length_rate((j + 0.5) * ds_, model.xi_star());
+      rest_[e] += o * act.path.length_rate((j + 0.5) * ds_, model.xi_star((j + 0.5) * ds_));
     }
   }
   seg_len_.assign(seg_weight_.size(), 0.0);
@@ -99,7 +99,9 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
       model, n_, clamped_ ? rod::TipSupport::clamped : rod::TipSupport::free);
   omega1_ = 2.0 * std::numbers::pi * c.first_bending_frequency_hz;
   const double EI = std::min(model.K_diag()[0], model.K_diag()[1]);
-  nu_star_ = model.xi_star().tail<3>();
+  problem.require_rest_spans_on_grid(n_, "the semi-discrete rod", true);
+  nu_star_.resize(n_ - 1);
+  for (int j = 0; j + 1 < n_; ++j) nu_star_[j] = model.xi_star((j + 0.5) * ds_).tail<3>();
   force_scale_ = EI / (L * L);
   const double e_bend = 0.5 * EI * std::pow(0.5 * std::numbers::pi / L, 2) * L;
   scale_.resize(dim_);
@@ -135,7 +137,7 @@ SemiDiscreteRod::Vector SemiDiscreteRod::rest_state(std::span<const SE3> g0) con
     // than its arc by O((kappa ds)^2); each segment keeps its rotation and gets nu = nu*.
     for (int j = 0; j + 1 < n_; ++j) {
       Vector6 x = (g0[j].inverse() * g0[j + 1]).log();
-      x.tail<3>() = ds_ * nu_star_;
+      x.tail<3>() = ds_ * nu_star_[j];
       g[j + 1] = g[j] * SE3::exp(x);
     }
   }
@@ -173,7 +175,7 @@ SemiDiscreteRod::Vector SemiDiscreteRod::initial_unknowns(const ConstRef& y) con
 void SemiDiscreteRod::segment_lengths(const double* y, std::vector<double>& seg) const {
   unpack_nodes(y);
   for (int j = 0; j + 1 < n_; ++j) {
-    const Vector6 xk = model_strain((g_[j].inverse() * g_[j + 1]).log() / ds_);
+    const Vector6 xk = model_strain((g_[j].inverse() * g_[j + 1]).log() / ds_, j);
     for (int e = 0; e < m_; ++e) {
       const std::size_t i = static_cast<std::size_t>(e) * (n_ - 1) + j;
       seg[i] = seg_weight_[i] == 0.0 ? 0.0
@@ -241,7 +243,7 @@ void SemiDiscreteRod::constraint(const double* y, double* c) const {
   unpack_nodes(y);
   for (int j = 0; j + 1 < n_; ++j) {
     const Vector6 x = (g_[j].inverse() * g_[j + 1]).log();
-    Eigen::Map<Vector3>(c + 3 * j) = x.tail<3>() / ds_ - nu_star_;
+    Eigen::Map<Vector3>(c + 3 * j) = x.tail<3>() / ds_ - nu_star_[j];
   }
 }
 
@@ -269,7 +271,7 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
     xi_dot_[j] = small::dexp_inv_apply(-x_seg, rel, k) / ds_;
     const double s_mid = (j + 0.5) * ds_;
     // Kirchhoff rods: the rod's own force part is replaced by the constraint force (header).
-    Vector6 xk = model_strain(xi_[j]), xk_dot = xi_dot_[j];
+    Vector6 xk = model_strain(xi_[j], j), xk_dot = xi_dot_[j];
     if (kirchhoff_) xk_dot.tail<3>().setZero();
     Vector6 sigma = actuators ? P_.internal_wrench(xk, xk_dot, s_mid, F_)
                               : P_.internal_wrench(xk, xk_dot, s_mid, t);

@@ -152,7 +152,7 @@ void SemiDiscreteRod::pose_correction(const double* mu, const double* mu_x,
   for (int k = 0; k + 1 < n_; ++k) {
     Vector6 s = Vector6::Zero();
     if (kirchhoff_) s.tail<3>() = Eigen::Map<const Vector3>(mu + 3 * k);
-    const Vector6 xk = model_strain(xi_[k]);
+    const Vector6 xk = model_strain(xi_[k], k);
     for (int e = 0, l = 0; e < m_; ++e) {
       if (is_muscle_[e]) continue;
       const std::size_t i = static_cast<std::size_t>(e) * nseg + k;
@@ -211,9 +211,9 @@ void SemiDiscreteRod::segment_rates(std::vector<double>& seg) const {
       if (seg_weight_[i] == 0.0) continue;
       Vector6 xk_dot = xi_dot_[k];
       if (kirchhoff_) xk_dot.tail<3>().setZero();
-      seg[l * nseg + k] = seg_weight_[i] * P_.actuators()[unknown_act_[e]]
-                                               .path.unit_wrench((k + 0.5) * ds_, model_strain(xi_[k]))
-                                               .dot(xk_dot);
+      const auto& path = P_.actuators()[unknown_act_[e]].path;
+      seg[l * nseg + k] =
+          seg_weight_[i] * path.unit_wrench((k + 0.5) * ds_, model_strain(xi_[k], k)).dot(xk_dot);
     }
     ++l;
   }

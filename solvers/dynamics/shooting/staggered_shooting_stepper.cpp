@@ -43,8 +43,9 @@ class StaggeredShootingStepper final : public Stepper {
                            const RestState& initial, std::unique_ptr<TimeRule> rule)
       : P_(problem), opt_(options), rule_(std::move(rule)), n_(options.nodes),
         ds_(problem.length() / (n_ - 1)), name_(std::string(rule_->name()) + " (grid staggered)"),
-        tangent_(n_, problem.model().xi_star(), problem.is_kirchhoff()) {
+        tangent_(n_, problem.model()) {
     RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", name_);
+    problem.require_rest_spans_on_grid(n_, rule_->name(), false);
     RODLAB_THROW_UNLESS(
         static_cast<int>(initial.g.size()) == n_ && static_cast<int>(initial.xi.size()) == n_,
         "{}: expected {} initial nodes, got {}", name_, n_, initial.g.size());

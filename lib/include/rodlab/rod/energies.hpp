@@ -13,7 +13,8 @@ namespace rodlab::rod {
 
 using lie::Vector3;
 
-double strain_energy_density(const RodModel& model, const Vector6& xi);
+/// At s: the rest strain xi*(s) (a rest-strain span's begin belongs to it).
+double strain_energy_density(const RodModel& model, const Vector6& xi, double s = 0.0);
 double kinetic_energy_density(const RodModel& model, const Vector6& eta);
 /// rho_eff = rho - fluid_density (buoyancy, (2.36)); p_ref is the reference position p*(s).
 double gravity_energy_density(const RodModel& model, const Vector3& gravity, const Vector3& p,
@@ -23,7 +24,8 @@ double viscous_power_density(const RodModel& model, const Vector6& xi_dot);
 /// Trapezoidal rule over samples f_0..f_{n-1} at uniform spacing ds (n >= 2).
 double integrate_trapezoid(std::span<const double> f, double ds);
 
-/// Reference configuration g*(s) = g0 exp(s xi*) (constant xi*, (2.78) is exact then).
+/// Reference configuration g*(s) = g0 exp(s xi*) (constant xi*, (2.78) is exact then; over
+/// rest-strain spans the product of their exponentials, RodModel::rest_pose).
 lie::SE3 reference_pose(const RodModel& model, const lie::SE3& base, double s);
 
 /// The trapezoidal sum ds sum_j c_j p*(s_j) of the reference centreline p*(s) =
@@ -36,7 +38,7 @@ lie::SE3 reference_pose(const RodModel& model, const lie::SE3& base, double s);
 inline Vector3 reference_centreline_sum(const RodModel& model, const lie::SE3& base, double ds,
                                         std::size_t n) {
   const double L = ds * static_cast<double>(n - 1);
-  if (model.xi_star().head<3>().isZero())
+  if (!model.has_rest_spans() && model.xi_star().head<3>().isZero())
     return L * base.translation() +
            base.rotation() * Vector3((0.5 * L * L) * model.xi_star().tail<3>());
   Vector3 sum = Vector3::Zero();

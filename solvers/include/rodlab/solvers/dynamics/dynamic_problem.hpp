@@ -28,6 +28,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rodlab/lie/se3.hpp"
@@ -124,7 +125,7 @@ class DynamicProblem {
   /// The clamp's pose (identity for a free tip).
   SE3 tip_target() const { return tip_target_ ? *tip_target_ : SE3::identity(); }
   /// The rest shape's tip pose, base exp(L xi*).
-  SE3 reference_tip() const { return base_ * SE3::exp(length() * model_.xi_star()); }
+  SE3 reference_tip() const { return base_ * model_.rest_pose(length()); }
   /// Scaled mismatch of a tip pose g against the clamp, [log(g^-1 g_clamp) rotation;
   /// translation / L]: dimensionless, O(1) for a bend of about a radian.
   Vector6 clamp_mismatch(const SE3& g) const {
@@ -187,29 +188,34 @@ class DynamicProblem {
   /// Lambda = K (xi - xi*) + V xi_dot + [embedded muscles] + sum_k F_k c_k(xi)  (3.10).
   Vector6 internal_wrench(const Vector6& xi, const Vector6& xi_dot, double s,
                           const Forces& F) const {
-    Vector6 W = rod_wrench(xi, xi_dot);
+    Vector6 W = rod_wrench(xi, xi_dot, s);
     if (muscles_) W += embedded_wrench(xi, xi_dot, s);
     if (!actuators_.empty()) W += actuator_wrench(xi, s, F);
     return W;
   }
   /// The same with the drive forces at t (scenes without muscles or length control).
   Vector6 internal_wrench(const Vector6& xi, const Vector6& xi_dot, double s, double t) const {
-    Vector6 W = rod_wrench(xi, xi_dot);
+    Vector6 W = rod_wrench(xi, xi_dot, s);
     if (!actuators_.empty()) W += actuator_wrench(xi, s, t);
     return W;
   }
-  /// The rod's own wrench K (xi - xi*) + V xi_dot.
-  Vector6 rod_wrench(const Vector6& xi, const Vector6& xi_dot) const {
-    return model_.K_diag().cwiseProduct(xi - model_.xi_star()) +
+  /// The rod's own wrench K (xi - xi*(s)) + V xi_dot (s: where the rest strain is read; a
+  /// segment's midpoint).
+  Vector6 rod_wrench(const Vector6& xi, const Vector6& xi_dot, double s) const {
+    return model_.K_diag().cwiseProduct(xi - model_.xi_star(s)) +
            model_.V_diag().cwiseProduct(xi_dot);
   }
+  /// Throws std::invalid_argument unless every rest-strain span begins on a node of the uniform
+  /// grid of `nodes` (then every segment lies in one span, whose xi* it takes). `scheme`: for
+  /// the message. Schemes that do not solve spans yet pass supported = false.
+  void require_rest_spans_on_grid(int nodes, std::string_view scheme, bool supported) const;
   /// The muscles' strain energy per unit length at s, 1/2 (xi - xi*)^T K_mus (xi - xi*), and
   /// their viscous power xi_dot^T V_mus xi_dot.
   double embedded_strain_density(const Vector6& xi, double s) const {
-    return 0.5 * (xi - model_.xi_star()).dot(embedded_wrench(xi, Vector6::Zero(), s));
+    return 0.5 * (xi - model_.xi_star(s)).dot(embedded_wrench(xi, Vector6::Zero(), s));
   }
   double embedded_dissipation(const Vector6& xi_dot, double s) const {
-    return xi_dot.dot(embedded_wrench(model_.xi_star(), xi_dot, s));
+    return xi_dot.dot(embedded_wrench(model_.xi_star(s), xi_dot, s));
   }
   /// The embedded muscles' stiffness and viscosity about the centroid at s, sum_a Ad^T K_a Ad
   /// and sum_a Ad^T V_a Ad (K_mus of the statics, (2.64)); zero without muscles.
@@ -264,14 +270,7 @@ class DynamicProblem {
                                   double s) const;
 
  private:
-  /// Throws std::invalid_argument for a rod with rest-strain spans: the statics solve them, the
-  /// dynamics schemes not yet (issue #18).
-  DynamicProblem(rod::RodModel model, SE3 base) : model_(std::move(model)), base_(base) {
-    if (model_.has_rest_spans())
-      throw std::invalid_argument(
-          "rod.rest_strain.spans: the dynamics schemes do not solve a rest strain that changes "
-          "along the rod yet (the statics schemes do; issue #18)");
-  }
+  DynamicProblem(rod::RodModel model, SE3 base) : model_(std::move(model)), base_(base) {}
 
   rod::RodModel model_;
   SE3 base_;

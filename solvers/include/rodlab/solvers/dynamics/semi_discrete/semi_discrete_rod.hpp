@@ -324,11 +324,11 @@ class SemiDiscreteRod {
   mutable std::vector<Vector6> corr_lambda_, corr_moved_, corr_node_;
   mutable SparseMatrix stab_base_;
 
-  /// A segment's strain as the stresses see it (Kirchhoff: nu = nu*).
-  Vector6 model_strain(const Vector6& xi) const {
+  /// Segment j's strain as the stresses see it (Kirchhoff: nu = nu* of its span).
+  Vector6 model_strain(const Vector6& xi, int j) const {
     if (!kirchhoff_) return xi;
     Vector6 x = xi;
-    x.tail<3>() = nu_star_;
+    x.tail<3>() = nu_star_[j];
     return x;
   }
 
@@ -338,7 +338,7 @@ class SemiDiscreteRod {
   bool kirchhoff_ = false;
   bool clamped_ = false;  ///< the tip node is held by a clamp (not an unknown)
   int last_ = 0;          ///< the last unknown node: N - 1, or N - 2 with a clamped tip
-  Vector3 nu_star_ = Vector3::Zero();
+  std::vector<Vector3> nu_star_;  ///< per segment: nu* of the span that holds it
   int dim_ = 0, iD_ = 0, iW_ = 0, iX_ = 0, m_ = 0;
   Vector6 M_, V_;
   // Actuator unknowns and embedded muscles (see above).
