@@ -9,7 +9,6 @@
 #include "rodlab/check.hpp"
 #include "rodlab/io/result_writer.hpp"
 #include "rodlab/io/text_format.hpp"
-#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 
 #include "errors.hpp"
@@ -231,8 +230,7 @@ void check_rest_spans(const SolveOptions& options, const scene::Scene& scene,
   const std::string_view name = run.scheme.name;
   const bool supported = name == "ida" || name == "implicit-midpoint-collocation";
   try {
-    solvers::dynamics::DynamicProblem::from_scene(scene).require_rest_spans_on_grid(
-        run.solve.nodes, name, supported);
+    scene.rod.to_model().require_spans_on_grid(run.solve.nodes, name, supported);
   } catch (const std::invalid_argument& e) {
     io::SceneDiagnostic d;
     d.source = scene.source_path.empty() ? options.scene_path : scene.source_path;

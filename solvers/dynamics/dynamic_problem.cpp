@@ -289,23 +289,4 @@ Vector6 DynamicProblem::entry_load(double s_entry, const Vector6& xi, const Forc
   return W;
 }
 
-void DynamicProblem::require_rest_spans_on_grid(int nodes, std::string_view scheme,
-                                                bool supported) const {
-  if (!model_.has_rest_spans()) return;
-  if (!supported)
-    throw std::invalid_argument(rodlab::format(
-        "rod.rest_strain.spans: {} does not solve a rest strain that changes along the rod yet; "
-        "ida and implicit-midpoint-collocation do (issue #18)",
-        scheme));
-  const double ds = length() / (nodes - 1);
-  for (double b : model_.rest_breaks()) {
-    const double k = b / ds;
-    if (std::abs(k - std::round(k)) > 1e-9 * std::max(1.0, k))
-      throw std::invalid_argument(rodlab::format(
-          "rod.rest_strain.spans: the span that begins at s = {:g} m does not begin on a node of "
-          "{}'s {} nodes (spacing {:g} m); choose N so that every span begins on a node",
-          b, scheme, nodes, ds));
-  }
-}
-
 }  // namespace rodlab::solvers::dynamics

@@ -321,7 +321,7 @@ class Collocation {
     const auto z = P_.extra_initial_guess();
     for (int e = 0; e < extra_; ++e) x[kState * N_ + e] = z[e];
     set_extra(x);
-    auto rotation_at = [&](double s) { return base.rotation() * model.rest_pose(s).rotation(); };
+    auto rotation_at = [&](double s) { return base.rotation() * model.rest_rotation(s); };
     Vector6 xi_star = model.xi_star();  // of the interval in progress (nodes at every break)
     auto dLambda = [&](double s, const Vector6& Lambda) {
       return P_.wrench_derivative(rotation_at(s), xi_star, Lambda);

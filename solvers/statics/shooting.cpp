@@ -24,7 +24,7 @@ void march_back_undeformed(const StaticProblem& P, int steps, std::span<const do
                            std::span<Vector6> out) {
   const rod::RodModel& model = P.model();
   const double L = P.length(), h = L / steps;
-  auto rotation_at = [&](double s) { return P.base().rotation() * model.rest_pose(s).rotation(); };
+  auto rotation_at = [&](double s) { return P.base().rotation() * model.rest_rotation(s); };
   Vector6 xi = model.xi_star();  // the rest strain of the step in progress (steps split at breaks)
   auto f = [&](double s, const Vector6& Lambda) { return P.wrench_derivative(rotation_at(s), xi, Lambda); };
   auto rk4_back = [&](double s, double dh, Vector6& Lambda) {

@@ -21,10 +21,10 @@
 //    (GSL's convention; parameter m = k^2). k is found by bisection on (1/sqrt 2, 1), where
 //    K - F(phi1) rises from 0 to infinity.
 //
-// 2. A direct integration of the planar equations by GSL's rk8pd at 1e-14, for any tip force
-//    that depends on the tip angle (dead or follower), shooting on the tip angle: integrate
-//    from the tip (theta = theta_L, m = 0) back to the base and solve theta(0; theta_L) = 0 by
-//    bisection (first sign change from theta_L = 0).
+// 2. A direct integration of the planar equations by GSL's rk8pd at 1e-14 (planar_cantilever,
+//    validation/reference/planar_rod.hpp), dead or follower tip force, shooting on the tip
+//    angle: integrate from the tip (theta = theta_L, m = 0) back to the base and solve
+//    theta(0; theta_L) = 0 by bisection (first sign change from theta_L = 0).
 //        theta' = m / EI,  m' = -(cos theta F_x - sin theta F_z),  x' = sin theta,  z' = cos theta
 //    (m(s) = ((p_L - p(s)) x F)_y). Follower force along the tip's body x axis:
 //    F = P (cos theta_L, 0, -sin theta_L).
@@ -38,21 +38,17 @@
 // 0.8106 L. (The horizontal displacement 1 - z/L is 0.0564 L at alpha = 1 and 0.5550 L at
 // alpha = 10; the tip angle at alpha = 1 is 0.4614 rad = 26.43 deg.)
 #include <cmath>
-#include <functional>
 #include <numbers>
 #include <stdexcept>
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_odeiv2.h>
 #include <gsl/gsl_sf_ellint.h>
+
+#include "reference/planar_rod.hpp"
 
 namespace rodlab::testing::statics {
 
-struct PlanarTip {
-  double theta = 0.0;  ///< tip angle from +z towards +x [rad]
-  double x = 0.0;      ///< tip x / L
-  double z = 0.0;      ///< tip z / L
-};
+/// theta: the tip angle from +z towards +x [rad]; x, z: the tip / L (L = 1 here).
+using PlanarTip = validation::reference::PlanarTip;
 
 /// The closed form (1) above for a dead load, alpha = P L^2/EI > 0.
 inline PlanarTip elastica_dead_load_elliptic(double alpha) {
@@ -75,77 +71,17 @@ inline PlanarTip elastica_dead_load_elliptic(double alpha) {
   return t;
 }
 
-/// The direct integration (2) above, L = EI = 1; force(theta_L) gives (F_x, F_z) in units of
-/// EI / L^2.
-inline PlanarTip elastica_ode(const std::function<void(double, double&, double&)>& force) {
-  struct Params {
-    double Fx, Fz;
-  };
-  auto rhs = [](double, const double y[], double dydt[], void* params) -> int {
-    const auto* p = static_cast<const Params*>(params);
-    dydt[0] = y[1];
-    dydt[1] = -(std::cos(y[0]) * p->Fx - std::sin(y[0]) * p->Fz);
-    dydt[2] = std::sin(y[0]);
-    dydt[3] = std::cos(y[0]);
-    return GSL_SUCCESS;
-  };
-  // Integrates from the tip back to the base; returns theta(0), fills the base position
-  // relative to the tip.
-  auto shoot = [&](double theta_L, double& x0, double& z0) {
-    Params p{};
-    force(theta_L, p.Fx, p.Fz);
-    gsl_odeiv2_system sys{rhs, nullptr, 4, &p};
-    gsl_odeiv2_driver* d = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, -1e-3, 1e-14, 1e-14);
-    double s = 1.0, y[4] = {theta_L, 0.0, 0.0, 0.0};
-    const int status = gsl_odeiv2_driver_apply(d, &s, 0.0, y);
-    gsl_odeiv2_driver_free(d);
-    if (status != GSL_SUCCESS) throw std::runtime_error("elastica_ode: integration failed");
-    x0 = y[2];
-    z0 = y[3];
-    return y[0];
-  };
-  double x0, z0;
-  double lo = 0.0, f_lo = shoot(lo, x0, z0), hi = lo;
-  // First sign change of theta(0; theta_L) from theta_L = 0 upwards.
-  for (int i = 1; i <= 2000; ++i) {
-    hi = 0.01 * i;
-    const double f_hi = shoot(hi, x0, z0);
-    if ((f_lo < 0) != (f_hi < 0)) break;
-    lo = hi;
-    f_lo = f_hi;
-    if (i == 2000) throw std::runtime_error("elastica_ode: no root bracketed");
-  }
-  for (int i = 0; i < 100 && hi - lo > 1e-16; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    const double f_mid = shoot(mid, x0, z0);
-    if ((f_mid < 0) == (f_lo < 0)) {
-      lo = mid;
-      f_lo = f_mid;
-    } else {
-      hi = mid;
-    }
-  }
-  PlanarTip t;
-  t.theta = 0.5 * (lo + hi);
-  shoot(t.theta, x0, z0);
-  t.x = -x0;  // the tip relative to the base
-  t.z = -z0;
-  return t;
-}
-
+/// The direct integration (2) above (validation/reference/planar_rod.hpp, L = EI = 1,
+/// inextensible), dead tip force alpha along +x.
 inline PlanarTip elastica_dead_load_ode(double alpha) {
-  return elastica_ode([alpha](double, double& Fx, double& Fz) {
-    Fx = alpha;
-    Fz = 0.0;
-  });
+  return validation::reference::planar_cantilever({1.0, 1.0, 0.0, 0.0}, {0, 0, alpha, 0}, 0.0,
+                                                  0.01);
 }
 
 /// Follower force of magnitude alpha along the tip's body x axis, Ry(theta_L) e_x.
 inline PlanarTip elastica_follower_ode(double alpha) {
-  return elastica_ode([alpha](double theta_L, double& Fx, double& Fz) {
-    Fx = alpha * std::cos(theta_L);
-    Fz = -alpha * std::sin(theta_L);
-  });
+  return validation::reference::planar_cantilever({1.0, 1.0, 0.0, 0.0},
+                                                  {0, 0, alpha, 0, true}, 0.0, 0.01);
 }
 
 }  // namespace rodlab::testing::statics

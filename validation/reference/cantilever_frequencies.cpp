@@ -6,8 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_odeiv2.h>
+#include "reference/rk8pd.hpp"
 
 namespace rodlab::validation::reference {
 namespace {
@@ -32,13 +31,9 @@ int modal_rhs(double, const double y[], double dyds[], void* params) {
 /// The free-end conditions [psi'(L), w'(L) - psi(L)] of the solution that starts clamped with
 /// the slopes (w'(0), psi'(0)) = start.
 std::array<double, 2> free_end(const Modal& m, std::array<double, 2> start) {
-  gsl_odeiv2_system ode{modal_rhs, nullptr, 4, const_cast<Modal*>(&m)};
-  gsl_odeiv2_driver* d = gsl_odeiv2_driver_alloc_y_new(&ode, gsl_odeiv2_step_rk8pd,
-                                                       1e-3 * m.beam.length, 1e-13, 1e-13);
-  double s = 0.0, y[4] = {0.0, start[0], 0.0, start[1]};
-  const int status = gsl_odeiv2_driver_apply(d, &s, m.beam.length, y);
-  gsl_odeiv2_driver_free(d);
-  if (status != GSL_SUCCESS) throw std::runtime_error("timoshenko frequencies: rk8pd failed");
+  double y[4] = {0.0, start[0], 0.0, start[1]};
+  integrate_rk8pd({modal_rhs, nullptr, 4, const_cast<Modal*>(&m)}, 0.0, m.beam.length, y, 1e-13,
+                  "timoshenko frequencies");
   return {y[3], y[1] - y[2]};
 }
 

@@ -5,8 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_odeiv2.h>
+#include "reference/rk8pd.hpp"
 
 namespace rodlab::validation::reference {
 namespace {
@@ -38,15 +37,13 @@ int rhs(double, const double y[], double dyds[], void* params) {
 
 /// Integrates from the tip at angle theta_L to the base; returns y(0).
 std::array<double, 6> shoot(const System& sys, double theta_L) {
-  gsl_odeiv2_system ode{rhs, nullptr, 6, const_cast<System*>(&sys)};
-  const double L = sys.rod.length;
-  gsl_odeiv2_driver* d =
-      gsl_odeiv2_driver_alloc_y_new(&ode, gsl_odeiv2_step_rk8pd, -1e-3 * L, 1e-14, 1e-14);
-  double s = L;
-  std::array<double, 6> y{theta_L, 0.0, 0.0, 0.0, sys.loads.Fx, sys.loads.Fz};
-  const int status = gsl_odeiv2_driver_apply(d, &s, 0.0, y.data());
-  gsl_odeiv2_driver_free(d);
-  if (status != GSL_SUCCESS) throw std::runtime_error("planar_cantilever: rk8pd failed");
+  const auto& f = sys.loads;
+  const double c = std::cos(theta_L), sn = std::sin(theta_L);
+  const double Fx = f.follower ? f.Fx * c + f.Fz * sn : f.Fx;  // d1 = (c, -s), d3 = (s, c)
+  const double Fz = f.follower ? -f.Fx * sn + f.Fz * c : f.Fz;
+  std::array<double, 6> y{theta_L, 0.0, 0.0, 0.0, Fx, Fz};
+  integrate_rk8pd({rhs, nullptr, 6, const_cast<System*>(&sys)}, sys.rod.length, 0.0, y.data(),
+                  1e-14, "planar_cantilever");
   return y;
 }
 

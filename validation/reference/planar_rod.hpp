@@ -12,7 +12,12 @@
 // (Kirchhoff: nu1 = 0, nu3 = 1), and the balance of moments about y, m' + (p' x n)_y = 0:
 //     theta' = m / EI,   m' = n_z p'_x - n_x p'_z,   p' = nu1 d1 + nu3 d3,   n' = -f.
 // Shooting: from the tip (theta = theta_L, m = 0, n = F) back to the base, theta(0; theta_L) = 0
-// by bisection on the first sign change met when theta_L walks away from `start`.
+// by bisection on the first sign change met when theta_L walks away from `start`. A follower tip
+// force is F = Fx d1(theta_L) + Fz d3(theta_L).
+//
+// Cross-checked with mpmath (30 digits) for the tip-loaded Kirchhoff elastica, L = EI = 1
+// (tests/statics/elastica_reference.hpp): alpha = 1, x = 0.30172077379981353,
+// z = 0.94356676371662312, theta_L = 0.46135194971187896.
 
 namespace rodlab::validation::reference {
 
@@ -26,7 +31,8 @@ struct PlanarRod {
 
 struct PlanarLoads {
   double fx = 0.0, fz = 0.0;  ///< uniform world force per unit length [N/m]
-  double Fx = 0.0, Fz = 0.0;  ///< dead tip force [N]
+  double Fx = 0.0, Fz = 0.0;  ///< tip force [N]: world (x, z), or along (d1, d3) if follower
+  bool follower = false;      ///< the tip force turns with the tip section
 };
 
 struct PlanarTip {

@@ -31,8 +31,7 @@ double integrate_trapezoid(std::span<const double> f, double ds) {
 }
 
 lie::SE3 reference_pose(const RodModel& model, const lie::SE3& base, double s) {
-  if (model.has_rest_spans()) return base * model.rest_pose(s);
-  return base * lie::SE3::exp(s * model.xi_star());
+  return base * model.rest_pose(s);
 }
 
 }  // namespace rodlab::rod

@@ -66,7 +66,35 @@ std::vector<double> RodModel::rest_breaks() const {
   return breaks;
 }
 
+lie::SO3 RodModel::rest_rotation(double s) const {
+  if (spans_.size() == 1) return lie::SO3::exp(s * lie::Vector3(xi_star_.head<3>()));
+  lie::SO3 R;
+  for (std::size_t k = 0; k < spans_.size() && spans_[k].begin < s; ++k) {
+    const double end = k + 1 < spans_.size() ? std::min(s, spans_[k + 1].begin) : s;
+    R = R * lie::SO3::exp((end - spans_[k].begin) * lie::Vector3(spans_[k].xi_star.head<3>()));
+  }
+  return R;
+}
+
+void RodModel::require_spans_on_grid(int nodes, std::string_view who, bool supported) const {
+  if (spans_.size() == 1) return;
+  RODLAB_THROW_UNLESS(supported,
+                      "rod.rest_strain.spans: {} does not solve a rest strain that changes along "
+                      "the rod yet; ida and implicit-midpoint-collocation do (issue #18)",
+                      who);
+  const double ds = length_ / (nodes - 1);
+  for (double b : rest_breaks()) {
+    const double k = b / ds;
+    RODLAB_THROW_UNLESS(std::abs(k - std::round(k)) <= 1e-9 * std::max(1.0, k),
+                        "rod.rest_strain.spans: the span that begins at s = {:g} m does not begin "
+                        "on a node of {}'s {} nodes (spacing {:g} m); choose N so that every span "
+                        "begins on a node",
+                        b, who, nodes, ds);
+  }
+}
+
 lie::SE3 RodModel::rest_pose(double s) const {
+  if (spans_.size() == 1) return lie::SE3::exp(s * xi_star_);
   lie::SE3 g = lie::SE3::identity();
   for (std::size_t k = 0; k < spans_.size() && spans_[k].begin < s; ++k) {
     const double end = k + 1 < spans_.size() ? std::min(s, spans_[k + 1].begin) : s;

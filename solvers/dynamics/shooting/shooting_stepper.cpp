@@ -34,7 +34,7 @@ class ShootingStepper final : public Stepper {
         ds_(problem.length() / (n_ - 1)) {
     const std::string name(rule_->name());
     RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", name);
-    problem.require_rest_spans_on_grid(n_, name, false);
+    problem.model().require_spans_on_grid(n_, name, false);
     RODLAB_THROW_UNLESS(
         static_cast<int>(initial.xi.size()) == n_ && static_cast<int>(initial.g.size()) == n_,
         "{}: expected {} initial nodes, got {}", name, n_, initial.xi.size());

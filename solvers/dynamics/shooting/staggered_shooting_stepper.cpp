@@ -45,7 +45,7 @@ class StaggeredShootingStepper final : public Stepper {
         ds_(problem.length() / (n_ - 1)), name_(std::string(rule_->name()) + " (grid staggered)"),
         tangent_(n_, problem.model()) {
     RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", name_);
-    problem.require_rest_spans_on_grid(n_, rule_->name(), false);
+    problem.model().require_spans_on_grid(n_, rule_->name(), false);
     RODLAB_THROW_UNLESS(
         static_cast<int>(initial.g.size()) == n_ && static_cast<int>(initial.xi.size()) == n_,
         "{}: expected {} initial nodes, got {}", name_, n_, initial.g.size());

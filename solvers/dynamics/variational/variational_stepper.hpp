@@ -34,7 +34,7 @@ class Variational final : public Stepper {
       : P_(problem), opt_(options), n_(options.nodes), ds_(problem.length() / (n_ - 1)),
         tangent_(n_, problem.model()) {
     if (n_ < 3) throw std::invalid_argument("variational: nodes must be >= 3");
-    problem.require_rest_spans_on_grid(n_, "variational", false);
+    problem.model().require_spans_on_grid(n_, "variational", false);
     const auto& g0 = initial.g;
     RODLAB_THROW_UNLESS(static_cast<int>(g0.size()) == n_,
                         "variational: expected {} initial poses, got {}", n_, g0.size());

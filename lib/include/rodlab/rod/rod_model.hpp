@@ -6,6 +6,7 @@
 // with the reference twist xi* (the rest strain; straight rod: [0 0 0 0 0 1]), constant along s
 // or piecewise constant over spans (issue #18: rod.rest_strain.spans).
 // model kirchhoff holds nu = nu* (3.45): only the angular strains are free.
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -65,6 +66,12 @@ class RodModel {
   /// The rest shape at s relative to the base: the product of exp(l_k xi*_k) over the spans
   /// up to s.
   lie::SE3 rest_pose(double s) const;
+  /// Its rotation alone, the product of exp(l_k omega*_k) (exp(s omega*) for a uniform rod).
+  lie::SO3 rest_rotation(double s) const;
+  /// Throws std::invalid_argument unless every span begins on a node of the uniform grid of
+  /// `nodes` nodes (each segment then lies in one span, whose xi* it takes); `who` names the
+  /// scheme in the message; `supported` = false: the scheme does not solve spans at all.
+  void require_spans_on_grid(int nodes, std::string_view who, bool supported) const;
 
   /// Diagonals of K, M, V, and of K^-1.
   const Vector6& K_diag() const { return K_; }

@@ -205,10 +205,7 @@ class DynamicProblem {
     return model_.K_diag().cwiseProduct(xi - model_.xi_star(s)) +
            model_.V_diag().cwiseProduct(xi_dot);
   }
-  /// Throws std::invalid_argument unless every rest-strain span begins on a node of the uniform
-  /// grid of `nodes` (then every segment lies in one span, whose xi* it takes). `scheme`: for
-  /// the message. Schemes that do not solve spans yet pass supported = false.
-  void require_rest_spans_on_grid(int nodes, std::string_view scheme, bool supported) const;
+
   /// The muscles' strain energy per unit length at s, 1/2 (xi - xi*)^T K_mus (xi - xi*), and
   /// their viscous power xi_dot^T V_mus xi_dot.
   double embedded_strain_density(const Vector6& xi, double s) const {
