@@ -31,7 +31,7 @@ using statics::StaticSolveOptions;
 
 template <statics::RkmkMethod method>
 result::StaticResult rkmk(const StaticProblem& problem, const StaticSolveOptions& o) {
-  return statics::solve_shooting(problem, method, {o.nodes, o.tol, o.max_iterations});
+  return statics::solve_shooting(problem, method, {o.nodes, o.tol, o.max_iterations, {}});
 }
 
 result::StaticResult chebyshev(const StaticProblem& problem, const StaticSolveOptions& o) {

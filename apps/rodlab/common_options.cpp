@@ -222,15 +222,13 @@ std::string scene_dynamics_scheme(const scene::Scene& scene) {
 
 namespace {
 
-/// Rest-strain spans (issue #18): solved by ida and implicit-midpoint-collocation when every
-/// span begins on a node; otherwise a scene error at rod.rest_strain.spans, before anything runs.
+/// Rest-strain spans (issue #18): every dynamics scheme solves them when every span begins on a
+/// node; otherwise a scene error at rod.rest_strain.spans, before anything runs.
 void check_rest_spans(const SolveOptions& options, const scene::Scene& scene,
                       const DynamicRun& run) {
   if (scene.rod.rest_spans.empty()) return;
-  const std::string_view name = run.scheme.name;
-  const bool supported = name == "ida" || name == "implicit-midpoint-collocation";
   try {
-    scene.rod.to_model().require_spans_on_grid(run.solve.nodes, name, supported);
+    scene.rod.to_model().require_spans_on_grid(run.solve.nodes, run.scheme.name);
   } catch (const std::invalid_argument& e) {
     io::SceneDiagnostic d;
     d.source = scene.source_path.empty() ? options.scene_path : scene.source_path;

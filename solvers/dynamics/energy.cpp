@@ -29,10 +29,13 @@ double strain_energy_segments(const rod::RodModel& model, std::span<const Vector
 }
 
 double strain_energy_nodes(const rod::RodModel& model, std::span<const Vector6> xi, double ds) {
-  return trapezoid(xi.size(), ds,
-                   [&](std::size_t j) {
-                     return rod::strain_energy_density(model, xi[j], static_cast<double>(j) * ds);
-                   });
+  // node j's rest strain is segment min(j, N - 2)'s (RodModel::segment_xi_star), read at its
+  // midpoint
+  const std::size_t last = xi.size() - 2;
+  return trapezoid(xi.size(), ds, [&](std::size_t j) {
+    const double s = (static_cast<double>(std::min(j, last)) + 0.5) * ds;
+    return rod::strain_energy_density(model, xi[j], s);
+  });
 }
 
 double gravity_energy(const DynamicProblem& problem, std::span<const SE3> g, double ds) {

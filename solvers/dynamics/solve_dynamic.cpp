@@ -1,5 +1,6 @@
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -39,12 +40,20 @@ double energy_budget(const DynamicProblem& problem, const Energy& e0, const Ener
 
 }  // namespace
 
+RestState rest_shape(const DynamicProblem& problem, int nodes) {
+  const double ds = problem.length() / (nodes - 1);
+  RestState state{std::vector<SE3>(nodes), std::vector<Vector6>(nodes)};
+  for (int j = 0; j < nodes; ++j) {
+    state.g[j] = rod::reference_pose(problem.model(), problem.base(), j * ds);
+    state.xi[j] = problem.model().segment_xi_star(std::min(j, nodes - 2), nodes);
+  }
+  return state;
+}
+
 RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem,
                         const DynamicSolveOptions& options, std::string& failure) {
   const int n = options.nodes;
-  const double ds = problem.length() / (n - 1);
-  RestState state{std::vector<SE3>(n), std::vector<Vector6>(n, problem.model().xi_star())};
-  for (int j = 0; j < n; ++j) state.xi[j] = problem.model().xi_star(j * ds);  // spans: node's
+  RestState state = rest_shape(problem, n);
   if (options.initial == scene::Initial::straight) {
     if (problem.tip_clamped()) {
       const double miss = problem.clamp_mismatch(problem.reference_tip()).lpNorm<Eigen::Infinity>();
@@ -55,8 +64,6 @@ RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem
           "dynamics.initial: static (the clamped equilibrium under the t = 0 loads)",
           miss);
     }
-    for (int j = 0; j < n; ++j)
-      state.g[j] = rod::reference_pose(problem.model(), problem.base(), j * ds);
     return state;
   }
   // The shooting schemes on the Euler grid rebuild their poses from the node strains by explicit

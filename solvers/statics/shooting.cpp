@@ -88,7 +88,10 @@ class ShootingSolver {
     // Only for rk4: for the low-order methods the coarse Jacobian is far from their own
     // discrete one, and the first Newton step can land in another equilibrium's basin (seen on
     // the elastica with rkmk-euler-implicit at PL^2/EI = 10).
-    if (method_ == RkmkMethod::rk4 && options_.nodes > 2 * kJacobianNodes) {
+    // Not from a given start (ShootingOptions::base_wrench_guess): such a rod may turn many times
+    // within a coarse step (the localised helix of the literature family failed with it).
+    if (method_ == RkmkMethod::rk4 && options_.nodes > 2 * kJacobianNodes &&
+        !options_.base_wrench_guess) {
       newton.jacobian_residual = [&](const VectorXd& x, VectorXd& r) {
         set_state(x);
         const auto end = shoot(P_, RkmkMethod::rk4, kJacobianNodes, base_wrench(x));
@@ -118,7 +121,10 @@ class ShootingSolver {
   }
 
   result::StaticResult run() {
-    NewtonResult direct = solve_at(1.0, rigid_guess(1.0));
+    VectorXd start = rigid_guess(1.0);
+    if (options_.base_wrench_guess)
+      start.head<6>() = options_.base_wrench_guess->cwiseQuotient(P_.wrench_scale());
+    NewtonResult direct = solve_at(1.0, start);
     VectorXd x = direct.x;
     bool converged = direct.converged;
     std::string reason = direct.reason;
@@ -129,7 +135,9 @@ class ShootingSolver {
     // rkmk-rk4 at P L^2/EI = 41, tests/statics/test_dead_load_branch).
     // The load continuation follows the branch from the unloaded rod and decides; a converged
     // direct solution is kept if the continuation fails.
-    if (!converged || direct.backtracks > 0 || direct.iterations > kTrustedDirectIterations) {
+    const bool own_start = options_.base_wrench_guess.has_value();
+    if (!own_start &&
+        (!converged || direct.backtracks > 0 || direct.iterations > kTrustedDirectIterations)) {
       auto cont = continuation();
       if (cont.converged) {
         converged = true;

@@ -35,7 +35,7 @@ result::StaticResult direct(const solvers::statics::StaticProblem& P, solvers::S
                             int nodes) {
   using solvers::SchemeId;
   using solvers::statics::RkmkMethod;
-  const solvers::statics::ShootingOptions shooting{nodes, 1e-10, 50};
+  const solvers::statics::ShootingOptions shooting{nodes, 1e-10, 50, {}};
   switch (id) {
     case SchemeId::rkmk_euler_explicit:
       return solve_shooting(P, RkmkMethod::euler_explicit, shooting);

@@ -166,10 +166,7 @@ inline StepTrace run_steps(solvers::dynamics::Stepper& s, double dt, long steps)
 
 /// At rest in the reference configuration (straight along +z).
 inline solvers::dynamics::RestState straight(const solvers::dynamics::DynamicProblem& P, int nodes) {
-  solvers::dynamics::RestState r{std::vector<lie::SE3>(nodes), std::vector<lie::Vector6>(nodes, P.model().xi_star())};
-  const double ds = P.length() / (nodes - 1);
-  for (int j = 0; j < nodes; ++j) r.g[j] = rod::reference_pose(P.model(), P.base(), j * ds);
-  return r;
+  return solvers::dynamics::rest_shape(P, nodes);
 }
 
 inline double seconds_since(std::chrono::steady_clock::time_point start) {

@@ -54,7 +54,7 @@ KinsolCollocationReport kinsol(const StaticProblem& P, int nodes, double tol = 1
 }
 
 result::StaticResult rk4_reference(const StaticProblem& P) {
-  const auto r = solvers::statics::solve_shooting(P, RkmkMethod::rk4, {1601, 1e-12, 50});
+  const auto r = solvers::statics::solve_shooting(P, RkmkMethod::rk4, {1601, 1e-12, 50, {}});
   BOOST_REQUIRE(r.converged);
   return r;
 }

@@ -7,7 +7,9 @@
 //   - Euler's critical loads (clamped-free, pinned-pinned, clamped-clamped) with the shear and
 //     extension correction of a Cosserat rod, and Greenhill's twisted clamped rod, measured as
 //     the load where the straight rod's stiffness vanishes (checks/bifurcation_load.hpp);
-//   - Bathe and Bolourchi's 45-degree bend under an out-of-plane tip force.
+//   - Bathe and Bolourchi's 45-degree bend under an out-of-plane tip force;
+//   - the natural frequencies from free vibration (literature_frequencies.cpp);
+//   - the localised helical buckle of a twisted rod under tension (literature_helix.cpp).
 // --quick runs a subset of the loads of each case.
 #include <algorithm>
 #include <cmath>
@@ -23,6 +25,7 @@
 #include "checks/bifurcation_load.hpp"
 #include "checks/check.hpp"
 #include "checks/literature_frequencies.hpp"
+#include "checks/literature_helix.hpp"
 #include "reference/bathe_bolourchi.hpp"
 #include "reference/buckling.hpp"
 #include "reference/planar_rod.hpp"
@@ -470,9 +473,21 @@ void frequencies(Literature& f) {
                               1e-3, "Timoshenko beam (Huang 1961) and the wave equations"));
 }
 
+/// The localised helical buckle (literature_helix.cpp); the headline is the finest grid's four
+/// checks, the last ones.
+void localised_helix(Literature& f) {
+  auto checks = localised_helix_checks(f.context);
+  const std::size_t first = f.checks.size() + checks.size() - 4;
+  for (auto& c : checks) f.checks.push_back(std::move(c));
+  f.checks.push_back(worst_of(f, first,
+                              "localised helical buckle: worst error (envelope / a, centreline / "
+                              "L, base moment / M, base force / T) at rkmk-rk4 N = 801",
+                              1e-6, "closed-form homoclinic (van der Heijden & Thompson 2000)"));
+}
+
 constexpr void (*kCases[])(Literature&) = {&self_weight_elastica, &post_buckled_elastica,
                                            &critical_loads, &forty_five_degree_bend,
-                                           &frequencies};
+                                           &frequencies, &localised_helix};
 
 }  // namespace
 

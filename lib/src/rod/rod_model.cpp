@@ -76,12 +76,8 @@ lie::SO3 RodModel::rest_rotation(double s) const {
   return R;
 }
 
-void RodModel::require_spans_on_grid(int nodes, std::string_view who, bool supported) const {
+void RodModel::require_spans_on_grid(int nodes, std::string_view who) const {
   if (spans_.size() == 1) return;
-  RODLAB_THROW_UNLESS(supported,
-                      "rod.rest_strain.spans: {} does not solve a rest strain that changes along "
-                      "the rod yet; ida and implicit-midpoint-collocation do (issue #18)",
-                      who);
   const double ds = length_ / (nodes - 1);
   for (double b : rest_breaks()) {
     const double k = b / ds;

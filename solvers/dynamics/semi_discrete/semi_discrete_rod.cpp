@@ -99,7 +99,7 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
       model, n_, clamped_ ? rod::TipSupport::clamped : rod::TipSupport::free);
   omega1_ = 2.0 * std::numbers::pi * c.first_bending_frequency_hz;
   const double EI = std::min(model.K_diag()[0], model.K_diag()[1]);
-  problem.model().require_spans_on_grid(n_, "the semi-discrete rod", true);
+  problem.model().require_spans_on_grid(n_, "the semi-discrete rod");
   nu_star_.resize(n_ - 1);
   for (int j = 0; j + 1 < n_; ++j) nu_star_[j] = model.xi_star((j + 0.5) * ds_).tail<3>();
   force_scale_ = EI / (L * L);

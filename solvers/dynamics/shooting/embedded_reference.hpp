@@ -16,13 +16,12 @@
 
 namespace rodlab::solvers::dynamics {
 
-/// Kt and xi_ref (header) at one point of the grid from the embedded stiffness K_emb and
-/// viscosity V_emb there (DynamicProblem::embedded_stiffness / embedded_viscosity), the step
-/// constant c and the history h of the strain rate.
-inline void embedded_reference(const DynamicProblem& P, const lie::Matrix6& K_emb,
-                               const lie::Matrix6& V_emb, double c, const Vector6& h,
-                               lie::Matrix6& Kt, Vector6& xi_ref) {
-  const Vector6& xs = P.model().xi_star();
+/// Kt and xi_ref (header) at one point of the grid from its rest strain xs, the embedded
+/// stiffness K_emb and viscosity V_emb there (DynamicProblem::embedded_stiffness /
+/// embedded_viscosity), the step constant c and the history h of the strain rate.
+inline void embedded_reference(const DynamicProblem& P, const Vector6& xs,
+                               const lie::Matrix6& K_emb, const lie::Matrix6& V_emb, double c,
+                               const Vector6& h, lie::Matrix6& Kt, Vector6& xi_ref) {
   const lie::Matrix6 Ktot = lie::Matrix6(P.model().K_diag().asDiagonal()) + K_emb;
   const lie::Matrix6 Vtot = lie::Matrix6(P.model().V_diag().asDiagonal()) + V_emb;
   Kt = Ktot + c * Vtot;

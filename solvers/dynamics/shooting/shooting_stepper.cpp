@@ -34,7 +34,7 @@ class ShootingStepper final : public Stepper {
         ds_(problem.length() / (n_ - 1)) {
     const std::string name(rule_->name());
     RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", name);
-    problem.model().require_spans_on_grid(n_, name, false);
+    problem.model().require_spans_on_grid(n_, name);
     RODLAB_THROW_UNLESS(
         static_cast<int>(initial.xi.size()) == n_ && static_cast<int>(initial.g.size()) == n_,
         "{}: expected {} initial nodes, got {}", name, n_, initial.xi.size());
@@ -56,13 +56,19 @@ class ShootingStepper final : public Stepper {
     xi_hist_.assign(n_, Vector6::Zero());
     eta_hist_.assign(n_, Vector6::Zero());
     xi_ref_.assign(n_, Vector6::Zero());
+    // node j's strain carries the pose along segment j: the segment's rest strain (its span's)
+    K_xi_star_.resize(n_);
+    for (int j = 0; j < n_; ++j)
+      K_xi_star_[j] = problem.model().K_diag().cwiseProduct(
+          problem.model().segment_xi_star(std::min(j, n_ - 2), n_));
     g_u_.assign(n_, SE3::identity());
     const auto& K = problem.model().K_diag();
     const double EI = std::min(K[0], K[1]), L = problem.length();
     scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
     // first guess: the base wrench of the initial state
-    const Vector6 x0 =
-        P_.model().K_diag().cwiseProduct(xi_[0] - P_.model().xi_star()).cwiseQuotient(scale_);
+    const Vector6 x0 = P_.model().K_diag()
+                           .cwiseProduct(xi_[0] - P_.model().segment_xi_star(0, n_))
+                           .cwiseQuotient(scale_);
     entries_ = problem.entry_nodes(n_);
     m_ = problem.unknown_count();
     if (m_ == 0) {
@@ -94,12 +100,11 @@ class ShootingStepper final : public Stepper {
     const Vector6& V = P_.model().V_diag();
     Kt_ = P_.model().K_diag() + c_ * V;
     // Lambda = K (xi - xi*) + V (c xi + h) + tendons = Kt (xi - xi_ref) + tendons   (3.10)
-    const Vector6 K_xi_star = P_.model().K_diag().cwiseProduct(P_.model().xi_star());
     if (muscles_)
       muscle_references();
     else
       for (int j = 0; j < n_; ++j)
-        xi_ref_[j] = (K_xi_star - V.cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
+        xi_ref_[j] = (K_xi_star_[j] - V.cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
     const StepStatus status = m_ == 0 ? solve(plain_, t) : solve(extended_, t);
     if (!status.ok) return status;
     // the last shot was at the solution: the profiles at t_u are current.
@@ -266,7 +271,8 @@ class ShootingStepper final : public Stepper {
     unknown_.assign(m_, 0.0);
     node_weight_.assign(static_cast<std::size_t>(m_) * n_, 0.0);
     xi_end_.assign(n_, Vector6::Zero());
-    const std::vector<Vector6> reference(n_, P_.model().xi_star());
+    std::vector<Vector6> reference(n_);
+    for (int j = 0; j < n_; ++j) reference[j] = P_.model().segment_xi_star(std::min(j, n_ - 2), n_);
     for (int e = 0; e < m_; ++e) {
       is_muscle_[e] = P_.actuators()[which_[e]].drive == ActuatorDrive::muscle;
       for (int j = 0; j < n_; ++j) {
@@ -285,7 +291,8 @@ class ShootingStepper final : public Stepper {
   /// Muscles: the full constitutive reference of every node (embedded_reference.hpp).
   void muscle_references() {
     for (int j = 0; j < n_; ++j)
-      embedded_reference(P_, K_emb_[j], V_emb_[j], c_, xi_hist_[j], Kt_full_[j], xi_ref_[j]);
+      embedded_reference(P_, P_.model().segment_xi_star(std::min(j, n_ - 2), n_), K_emb_[j],
+                         V_emb_[j], c_, xi_hist_[j], Kt_full_[j], xi_ref_[j]);
   }
 
   /// Dissipation and input work of the step: the power at t_u (trapezoid in s) weighted with
@@ -328,6 +335,7 @@ class ShootingStepper final : public Stepper {
   double t_u_ = 0.0, t_end_ = 0.0, dt_ = 0.0, c_ = 0.0, end_ = 1.0;
   double dissipated_start_ = 0.0, work_start_ = 0.0;
   std::vector<Vector6> xi_, eta_, xi_u_, eta_u_, xi_hist_, eta_hist_, xi_ref_;
+  std::vector<Vector6> K_xi_star_;  ///< K xi* of every node (its segment's span)
   std::vector<SE3> g_, g_u_;
   std::vector<DynamicProblem::EntryNode> entries_;
   ShootingNewton<Vector6, Matrix6> plain_;  ///< Lambda(0) only

@@ -45,11 +45,11 @@ class StaggeredShootingStepper final : public Stepper {
         ds_(problem.length() / (n_ - 1)), name_(std::string(rule_->name()) + " (grid staggered)"),
         tangent_(n_, problem.model()) {
     RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", name_);
-    problem.model().require_spans_on_grid(n_, rule_->name(), false);
+    problem.model().require_spans_on_grid(n_, rule_->name());
     RODLAB_THROW_UNLESS(
         static_cast<int>(initial.g.size()) == n_ && static_cast<int>(initial.xi.size()) == n_,
         "{}: expected {} initial nodes, got {}", name_, n_, initial.g.size());
-    const Vector6& xs = problem.model().xi_star();
+    const auto& model = problem.model();
     g_ = initial.g;
     xi_.assign(n_ - 1, Vector6::Zero());
     if (problem.tip_clamped()) g_.back() = problem.tip_target();  // met to the statics' tolerance
@@ -58,7 +58,7 @@ class StaggeredShootingStepper final : public Stepper {
       if (problem.is_kirchhoff()) {
         // start on the constraint (as `variational` and `ida`): each segment keeps its
         // rotation and gets nu = nu*
-        x.tail<3>() = ds_ * xs.tail<3>();
+        x.tail<3>() = ds_ * model.segment_xi_star(j, n_).tail<3>();
         g_[j + 1] = g_[j] * SE3::exp(x);
       }
       xi_[j] = x / ds_;
@@ -77,7 +77,8 @@ class StaggeredShootingStepper final : public Stepper {
     scale_ << EI / L, EI / L, EI / L, EI / (L * L), EI / (L * L), EI / (L * L);
     // first guess: the elastic wrench at the base of the initial state (its node strain there:
     // exact for a statics solution; the base segment's mid-point strain is O(ds) off it)
-    const Vector6 x0 = K.cwiseProduct(initial.xi[0] - xs).cwiseQuotient(scale_);
+    const Vector6 x0 =
+        K.cwiseProduct(initial.xi[0] - model.segment_xi_star(0, n_)).cwiseQuotient(scale_);
     m_ = problem.unknown_count();
     if (m_ == 0)
       plain_.start(x0);
@@ -388,10 +389,10 @@ class StaggeredShootingStepper final : public Stepper {
     }
   }
 
-  /// Segment j's xi_ref = (K xi* - V h_j) / Kt (no muscles).
+  /// Segment j's xi_ref = (K xi*_j - V h_j) / Kt (no muscles; xi*_j its span's).
   void strain_reference(int j) {
     const auto& model = P_.model();
-    xi_ref_[j] = (model.K_diag().cwiseProduct(model.xi_star()) -
+    xi_ref_[j] = (model.K_diag().cwiseProduct(model.segment_xi_star(j, n_)) -
                   model.V_diag().cwiseProduct(xi_hist_[j])).cwiseQuotient(Kt_);
   }
 
@@ -551,7 +552,8 @@ class StaggeredShootingStepper final : public Stepper {
   /// factorised once per step.
   void muscle_references() {
     for (int j = 0; j + 1 < n_; ++j) {
-      embedded_reference(P_, K_emb_[j], V_emb_[j], c_, xi_hist_[j], Kt_full_[j], xi_ref_[j]);
+      embedded_reference(P_, P_.model().segment_xi_star(j, n_), K_emb_[j], V_emb_[j], c_,
+                         xi_hist_[j], Kt_full_[j], xi_ref_[j]);
       if (P_.is_kirchhoff()) {
         Kt_accel_[j].setZero();
         Kt_accel_[j].topLeftCorner<3, 3>() = Kt_full_[j].topLeftCorner<3, 3>().inverse();

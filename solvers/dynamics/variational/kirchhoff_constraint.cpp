@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
@@ -18,11 +19,12 @@ namespace se3 = lie::se3;
 /// |nu - nu*| that the constraint solve reaches (relative to max(1, |nu*|)).
 constexpr double kConstraintTol = 1e-12;
 
-KirchhoffConstraint::KirchhoffConstraint(int nodes, double ds, const Vector3& nu_star,
+KirchhoffConstraint::KirchhoffConstraint(int nodes, double ds, std::vector<Vector3> nu_star,
                                          DiscreteLegendre legendre, int max_iterations)
     : n_(nodes),
       ds_(ds),
-      nu_star_(nu_star),
+      nu_star_(std::move(nu_star)),
+      nu_scale_(1.0),
       legendre_(legendre),
       max_iterations_(max_iterations),
       mu_free_(nodes, Vector6::Zero()),
@@ -31,6 +33,10 @@ KirchhoffConstraint::KirchhoffConstraint(int nodes, double ds, const Vector3& nu
       B_(nodes - 1, Matrix63::Zero()),
       C_(nodes - 1, Matrix63::Zero()) {
   A_.resize(nodes - 1);
+  RODLAB_THROW_UNLESS(static_cast<int>(nu_star_.size()) == nodes - 1,
+                      "KirchhoffConstraint: {} segments' nu*, expected {}", nu_star_.size(),
+                      nodes - 1);
+  for (const Vector3& nu : nu_star_) nu_scale_ = std::max(nu_scale_, nu.norm());
 }
 
 bool KirchhoffConstraint::enforce(double dt, std::span<const SE3> G, std::span<const Vector6> xi,
@@ -71,11 +77,11 @@ bool KirchhoffConstraint::enforce(double dt, std::span<const SE3> G, std::span<c
     for (int k = 0; k < m; ++k) {
       const SE3 E_next = lie::small_angle::exp(dt * eta[k + 1]);
       const Vector6 x = (E.inverse() * G[k] * E_next).log();
-      c_[k] = x.tail<3>() / ds_ - nu_star_;
+      c_[k] = x.tail<3>() / ds_ - nu_star_[k];
       worst = std::max(worst, c_[k].lpNorm<Eigen::Infinity>());
       E = E_next;
     }
-    if (worst <= kConstraintTol * std::max(1.0, nu_star_.norm())) return true;
+    if (worst <= kConstraintTol * nu_scale_) return true;
     if (it == max_iterations_ || !std::isfinite(worst)) break;
     for (auto& c : c_) c = -c;
     A_.solve(c_);

@@ -24,12 +24,13 @@ namespace rodlab::solvers::dynamics {
 
 class KirchhoffConstraint {
  public:
-  /// `nodes` nodes a distance ds apart (trapezoid weights, 1/2 at the tip), nu* the constraint.
-  KirchhoffConstraint(int nodes, double ds, const lie::Vector3& nu_star, DiscreteLegendre legendre,
-                      int max_iterations);
+  /// `nodes` nodes a distance ds apart (trapezoid weights, 1/2 at the tip), nu_star[k] segment
+  /// k's constraint (its span's nu*).
+  KirchhoffConstraint(int nodes, double ds, std::vector<lie::Vector3> nu_star,
+                      DiscreteLegendre legendre, int max_iterations);
 
   /// After a free step: adds the constraint impulses to the momenta mu (nodes 1..N-1) and
-  /// re-solves their velocities eta so that |nu - nu*| <= 1e-12 max(1, |nu*|) on the next
+  /// re-solves their velocities eta so that |nu - nu*| <= 1e-12 max(1, max |nu*|) on the next
   /// step's segments. G and xi are this step's segments. Returns false with failure() set
   /// when the solve fails.
   bool enforce(double dt, std::span<const lie::SE3> G, std::span<const lie::Vector6> xi,
@@ -42,7 +43,8 @@ class KirchhoffConstraint {
 
   int n_;
   double ds_;
-  lie::Vector3 nu_star_;
+  std::vector<lie::Vector3> nu_star_;  ///< per segment
+  double nu_scale_;                     ///< max(1, max_k |nu*_k|): the tolerance's scale
   DiscreteLegendre legendre_;
   int max_iterations_;
   std::vector<lie::Vector6> mu_free_;  ///< momenta without the constraint impulses

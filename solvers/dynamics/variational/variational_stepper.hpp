@@ -34,7 +34,7 @@ class Variational final : public Stepper {
       : P_(problem), opt_(options), n_(options.nodes), ds_(problem.length() / (n_ - 1)),
         tangent_(n_, problem.model()) {
     if (n_ < 3) throw std::invalid_argument("variational: nodes must be >= 3");
-    problem.model().require_spans_on_grid(n_, "variational", false);
+    problem.model().require_spans_on_grid(n_, "variational");
     const auto& g0 = initial.g;
     RODLAB_THROW_UNLESS(static_cast<int>(g0.size()) == n_,
                         "variational: expected {} initial poses, got {}", n_, g0.size());
@@ -44,7 +44,9 @@ class Variational final : public Stepper {
       throw std::invalid_argument(
           "variational: rod.model kirchhoff with tip.clamped is not supported yet (the constraint "
           "solve moves the tip); use implicit-midpoint or bdf-alpha, or rod.model cosserat");
-    nu_star_ = problem.model().xi_star().tail<3>();
+    nu_star_.resize(n_ - 1);  // each segment's span's (spans begin on nodes)
+    for (int j = 0; j + 1 < n_; ++j)
+      nu_star_[j] = problem.model().segment_xi_star(j, n_).tail<3>();
     g_.assign(g0.begin(), g0.end());
     // A clamped tip holds the clamp's pose exactly (the initial state meets it to the statics'
     // tolerance); the segments below then rebuild it to rounding in every step.
@@ -57,7 +59,7 @@ class Variational final : public Stepper {
       if (kirchhoff_) {
         // Start on the constraint: a chord of the sampled initial shape is shorter than its arc
         // by O((kappa ds)^2); the segment keeps its rotation and gets nu = nu*.
-        xi_[j].tail<3>() = nu_star_;
+        xi_[j].tail<3>() = nu_star_[j];
         G_[j] = SE3::exp(ds_ * xi_[j]);
         g_[j + 1] = g_[j] * G_[j];
       }
@@ -150,7 +152,7 @@ class Variational final : public Stepper {
         sigma = P_.internal_wrench(xi, xi_dot, s_mid, *F);  // with the muscles' own stiffness
         dissipated += ds_ * P_.embedded_dissipation(xi_dot, s_mid);
       } else {
-        sigma = kirchhoff_ ? kirchhoff_stress(xi, xi_dot, s_mid, t1)
+        sigma = kirchhoff_ ? kirchhoff_stress(j, xi, xi_dot, t1)
                            : P_.internal_wrench(xi, xi_dot, s_mid, t1);
       }
       const Vector6 lambda = small::dexp_inv_transpose_apply(x, sigma, k);
@@ -340,7 +342,7 @@ class Variational final : public Stepper {
       const Vector6 xi = x / ds_;
       const Vector6 xi_dot = (small::log(E_j.inverse() * G_[j] * E_next) / ds_ - xi) / dt;
       const double s_mid = (j + 0.5) * ds_;
-      const Vector6 sigma = kirchhoff_ ? kirchhoff_stress(xi, xi_dot, s_mid, t)
+      const Vector6 sigma = kirchhoff_ ? kirchhoff_stress(j, xi, xi_dot, t)
                                        : P_.internal_wrench(xi, xi_dot, s_mid, t);
       const Vector6 lambda = small::dexp_inv_transpose_apply(x, sigma, k);
       if (j > 0 && !node(j, t, dt, 0.5 * dt, SE3::identity(), lambda, lambda_prev, applied,
@@ -407,12 +409,12 @@ class Variational final : public Stepper {
     return -1;
   }
 
-  /// Kirchhoff rods: the rod's own wrench has no force part (nu = nu* holds; the force across
+  /// Kirchhoff rods: segment j's own wrench has no force part (nu = nu* holds; the force across
   /// the section is the constraint force f of KirchhoffConstraint), the actuators act as usual.
-  Vector6 kirchhoff_stress(Vector6 xi, Vector6 xi_dot, double s, double t) const {
-    xi.tail<3>() = nu_star_;
+  Vector6 kirchhoff_stress(int j, Vector6 xi, Vector6 xi_dot, double t) const {
+    xi.tail<3>() = nu_star_[j];
     xi_dot.tail<3>().setZero();
-    return P_.internal_wrench(xi, xi_dot, s, t);
+    return P_.internal_wrench(xi, xi_dot, (j + 0.5) * ds_, t);
   }
 
   StepStatus constraint_failure(double t1, double dt) const {
@@ -444,7 +446,7 @@ class Variational final : public Stepper {
   bool kirchhoff_ = false;
   bool clamped_ = false;  ///< the tip node is held by a clamp (not solved)
   bool started_ = false;  ///< the velocities are those over the steps (after the half kick)
-  Vector3 nu_star_;
+  std::vector<Vector3> nu_star_;  ///< Kirchhoff: each segment's nu* (its span's)
   std::optional<KirchhoffConstraint> constraint_;  ///< Kirchhoff rods only
   std::optional<VariationalActuators> act_;        ///< muscles, length control (kActuated)
   std::vector<Vector6> xi_new_;                    ///< the pre-pass's strains (kActuated)

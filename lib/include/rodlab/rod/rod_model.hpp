@@ -58,6 +58,13 @@ class RodModel {
     while (k + 1 < spans_.size() && spans_[k + 1].begin <= s) ++k;
     return spans_[k].xi_star;
   }
+  /// The rest strain of segment j = [s_j, s_(j+1)] of the uniform grid of `nodes` nodes, read
+  /// at its midpoint (with every span beginning on a node, the span that holds the segment).
+  /// The schemes with strains at the nodes (the shooting schemes' Euler grid, where node j's
+  /// strain carries the pose along segment j) give node j segment min(j, nodes - 2)'s.
+  const Vector6& segment_xi_star(int j, int nodes) const {
+    return xi_star((j + 0.5) * length_ / (nodes - 1));
+  }
   /// Whether the rest strain changes along s (more than one span).
   bool has_rest_spans() const { return spans_.size() > 1; }
   const std::vector<RestSpan>& rest_spans() const { return spans_; }
@@ -70,8 +77,8 @@ class RodModel {
   lie::SO3 rest_rotation(double s) const;
   /// Throws std::invalid_argument unless every span begins on a node of the uniform grid of
   /// `nodes` nodes (each segment then lies in one span, whose xi* it takes); `who` names the
-  /// scheme in the message; `supported` = false: the scheme does not solve spans at all.
-  void require_spans_on_grid(int nodes, std::string_view who, bool supported) const;
+  /// scheme in the message.
+  void require_spans_on_grid(int nodes, std::string_view who) const;
 
   /// Diagonals of K, M, V, and of K^-1.
   const Vector6& K_diag() const { return K_; }

@@ -47,6 +47,10 @@ struct DynamicSolveOptions {
 /// (dynamics.initial), over the defaults: what `rodlab dynamic` and the studies take from it.
 void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options);
 
+/// The rod at rest in its rest shape on a grid of `nodes` nodes: the reference configuration's
+/// poses, and each node's strain its segment's rest strain (RodModel::segment_xi_star).
+RestState rest_shape(const DynamicProblem& problem, int nodes);
+
 /// The initial state at rest (options.initial): the reference configuration, or the static
 /// equilibrium under the t = 0 loads. A clamped tip must hold the reference configuration's tip
 /// to start from it (else std::invalid_argument). A failed equilibrium leaves the reference

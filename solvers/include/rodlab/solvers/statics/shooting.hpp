@@ -3,6 +3,7 @@
 // wrench Lambda(0) so that the tip conditions hold, started from the equilibrium of the
 // undeformed rod (exact to first order in the loads), with load continuation when the direct
 // solve fails.
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -15,6 +16,11 @@ struct ShootingOptions {
   int nodes = 50;
   double tol = 1e-10;
   int max_iterations = 50;
+  /// Newton's first iterate Lambda(0) (the base's internal wrench [moment; force], body frame),
+  /// instead of the rigid rod's: an equilibrium on a branch that the load continuation from the
+  /// rest shape does not reach (a rod twisted through many turns between clamps whose poses
+  /// alone do not say how many). The solve then keeps to that start: no load continuation.
+  std::optional<Vector6> base_wrench_guess;
 };
 
 result::StaticResult solve_shooting(const StaticProblem& problem, RkmkMethod method,
