@@ -29,7 +29,7 @@ double strain_energy_segments(const rod::RodModel& model, std::span<const Vector
 }
 
 double strain_energy_nodes(const rod::RodModel& model, std::span<const Vector6> xi, double ds) {
-  // node j's rest strain is segment min(j, N - 2)'s (RodModel::segment_xi_star), read at its
+  // node j's rest strain is segment min(j, N - 2)'s (RodModel::node_xi_star), read at its
   // midpoint
   const std::size_t last = xi.size() - 2;
   return trapezoid(xi.size(), ds, [&](std::size_t j) {

@@ -45,7 +45,7 @@ RestState rest_shape(const DynamicProblem& problem, int nodes) {
   RestState state{std::vector<SE3>(nodes), std::vector<Vector6>(nodes)};
   for (int j = 0; j < nodes; ++j) {
     state.g[j] = rod::reference_pose(problem.model(), problem.base(), j * ds);
-    state.xi[j] = problem.model().segment_xi_star(std::min(j, nodes - 2), nodes);
+    state.xi[j] = problem.model().node_xi_star(j, nodes);
   }
   return state;
 }

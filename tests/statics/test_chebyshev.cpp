@@ -73,7 +73,7 @@ result::StaticResult chebyshev(const StaticProblem& P, int nodes, ChebyshevRepor
 }
 
 result::StaticResult rk4(const StaticProblem& P, int nodes) {
-  return solve_shooting(P, RkmkMethod::rk4, {nodes, 1e-12, 50});
+  return solve_shooting(P, RkmkMethod::rk4, {nodes, 1e-12, 50, {}});
 }
 
 /// Largest centreline distance between a one-element Chebyshev solution, interpolated

@@ -59,8 +59,7 @@ class ShootingStepper final : public Stepper {
     // node j's strain carries the pose along segment j: the segment's rest strain (its span's)
     K_xi_star_.resize(n_);
     for (int j = 0; j < n_; ++j)
-      K_xi_star_[j] = problem.model().K_diag().cwiseProduct(
-          problem.model().segment_xi_star(std::min(j, n_ - 2), n_));
+      K_xi_star_[j] = problem.model().K_diag().cwiseProduct(problem.model().node_xi_star(j, n_));
     g_u_.assign(n_, SE3::identity());
     const auto& K = problem.model().K_diag();
     const double EI = std::min(K[0], K[1]), L = problem.length();
@@ -272,7 +271,7 @@ class ShootingStepper final : public Stepper {
     node_weight_.assign(static_cast<std::size_t>(m_) * n_, 0.0);
     xi_end_.assign(n_, Vector6::Zero());
     std::vector<Vector6> reference(n_);
-    for (int j = 0; j < n_; ++j) reference[j] = P_.model().segment_xi_star(std::min(j, n_ - 2), n_);
+    for (int j = 0; j < n_; ++j) reference[j] = P_.model().node_xi_star(j, n_);
     for (int e = 0; e < m_; ++e) {
       is_muscle_[e] = P_.actuators()[which_[e]].drive == ActuatorDrive::muscle;
       for (int j = 0; j < n_; ++j) {
@@ -291,7 +290,7 @@ class ShootingStepper final : public Stepper {
   /// Muscles: the full constitutive reference of every node (embedded_reference.hpp).
   void muscle_references() {
     for (int j = 0; j < n_; ++j)
-      embedded_reference(P_, P_.model().segment_xi_star(std::min(j, n_ - 2), n_), K_emb_[j],
+      embedded_reference(P_, P_.model().node_xi_star(j, n_), K_emb_[j],
                          V_emb_[j], c_, xi_hist_[j], Kt_full_[j], xi_ref_[j]);
   }
 

@@ -6,6 +6,7 @@
 // with the reference twist xi* (the rest strain; straight rod: [0 0 0 0 0 1]), constant along s
 // or piecewise constant over spans (issue #18: rod.rest_strain.spans).
 // model kirchhoff holds nu = nu* (3.45): only the angular strains are free.
+#include <algorithm>
 #include <string_view>
 #include <vector>
 
@@ -60,10 +61,13 @@ class RodModel {
   }
   /// The rest strain of segment j = [s_j, s_(j+1)] of the uniform grid of `nodes` nodes, read
   /// at its midpoint (with every span beginning on a node, the span that holds the segment).
-  /// The schemes with strains at the nodes (the shooting schemes' Euler grid, where node j's
-  /// strain carries the pose along segment j) give node j segment min(j, nodes - 2)'s.
   const Vector6& segment_xi_star(int j, int nodes) const {
     return xi_star((j + 0.5) * length_ / (nodes - 1));
+  }
+  /// Node j's on a grid with strains at the nodes (the shooting schemes' Euler grid, where node
+  /// j's strain carries the pose along segment j): segment min(j, nodes - 2)'s.
+  const Vector6& node_xi_star(int j, int nodes) const {
+    return segment_xi_star(std::min(j, nodes - 2), nodes);
   }
   /// Whether the rest strain changes along s (more than one span).
   bool has_rest_spans() const { return spans_.size() > 1; }
