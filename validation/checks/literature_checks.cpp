@@ -6,7 +6,8 @@
 //   - the post-buckled clamped-free elastica, tip angle 10 to 170 degrees;
 //   - Euler's critical loads (clamped-free, pinned-pinned, clamped-clamped) with the shear and
 //     extension correction of a Cosserat rod, and Greenhill's twisted clamped rod, measured as
-//     the load where the straight rod's stiffness vanishes (checks/bifurcation_load.hpp);
+//     the load where the straight rod's stiffness vanishes (checks/bifurcation_load.hpp), and
+//     Greenhill's pinned shaft as the moment where a tilted rod's helix closes;
 //   - Bathe and Bolourchi's 45-degree bend under an out-of-plane tip force;
 //   - the natural frequencies from free vibration (literature_frequencies.cpp);
 //   - the localised helical buckle of a twisted rod under tension (literature_helix.cpp).
@@ -379,6 +380,86 @@ void critical_loads(Literature& f) {
   f.context.emit(std::move(data));
 }
 
+// --- Greenhill's pinned shaft ---------------------------------------------------------------
+
+/// The tip of a rod whose clamped base is tilted by theta0 about world y and whose free tip
+/// carries the dead moment M along world z (reference/buckling.hpp, Greenhill's pinned shaft).
+std::optional<Vector3> tilted_rod_tip(const rod::RodModel& model, double theta0, double M) {
+  StaticProblem P(model, SE3(SO3::exp(Vector3(0, theta0, 0)), Vector3::Zero()));
+  P.set_tip_wrench({(Vector6() << 0, 0, M, 0, 0, 0).finished(), loads::WrenchFrame::world});
+  const auto r = solve(P, "rkmk-rk4", 101);
+  if (!r.converged) return std::nullopt;
+  return tip(r);
+}
+
+/// Greenhill's pinned shaft: the moment M at which the tilted rod's tip returns to the axis
+/// through its base (its x crosses zero between M L / EI = 1.5 pi and 2.5 pi), by the secant
+/// method to 1e-12 relative; nullopt when a solve fails.
+std::optional<double> closing_moment(const rod::RodModel& model, double theta0, double guess) {
+  double a = 0.95 * guess, b = 1.05 * guess;
+  auto fa = tilted_rod_tip(model, theta0, a), fb = tilted_rod_tip(model, theta0, b);
+  for (int it = 0; it < 30 && fa && fb; ++it) {
+    if (std::abs(b - a) <= 1e-12 * guess) return b;
+    const double c = b - fb->x() * (b - a) / (fb->x() - fa->x());
+    a = b, fa = fb;
+    b = c, fb = tilted_rod_tip(model, theta0, c);
+  }
+  return std::nullopt;
+}
+
+void greenhill_pinned(Literature& f) {
+  constexpr double kTilt = 0.2;  // rad: the closing moment does not depend on it (exact helix)
+  DataSet data{.name = "literature_greenhill_pinned",
+               .description = "Greenhill's pinned shaft: the tip offset of a rod with its base "
+                              "tilted by 0.2 rad under a dead axial tip moment, against M L / "
+                              "(2 pi EI); closed form and rodlab",
+               .columns = {"series", "moment_ratio", "x_over_L", "y_over_L"}};
+  for (auto kind : {rod::ModelKind::cosserat, rod::ModelKind::kirchhoff}) {
+    if (!f.context.full && kind == rod::ModelKind::kirchhoff) continue;
+    const rod::RodModel m = table21_model(kind);
+    const double L = m.length(), EI = m.K_diag()[1], closed = 2.0 * kPi * EI / L;
+    if (kind == rod::ModelKind::cosserat) {
+      for (int i = 1; i <= 30; ++i) {
+        const double ratio = i / 20.0, k = ratio * closed / EI;  // the helix of rate k = M / EI
+        data.add_row({"closed form", ratio, std::sin(kTilt) * std::sin(k * L) / (k * L),
+                      std::sin(kTilt) * (1.0 - std::cos(k * L)) / (k * L)});
+        if (i % 3 != 0) continue;
+        const auto p = tilted_rod_tip(m, kTilt, ratio * closed);
+        if (p) data.add_row({"rkmk-rk4 N = 101", ratio, p->x() / L, p->y() / L});
+      }
+    }
+    const auto M = closing_moment(m, kTilt, closed);
+    const std::string name = "Greenhill pinned shaft (" + model_name(kind) +
+                             "), dead axial moment, rkmk-rk4 N = 101";
+    Check check = relative_check(name + ": critical moment (the tilted rod's helix closes)",
+                                 M ? *M : NAN, closed, 1e-6,
+                                 "M L / EI = 2 pi (Greenhill 1883; derived in docs/validation.md)");
+    check.passed = check.passed && M.has_value();
+    f.checks.push_back(with_topic(std::move(check), "literature"));
+    const auto p = M ? tilted_rod_tip(m, kTilt, *M) : std::nullopt;
+    f.checks.push_back(upper_bound_check(
+        name + ": |tip offset from the axis| / L at that moment",
+        p ? std::hypot(p->x(), p->y()) / L : NAN, 1e-8,
+        "the pinned mode's ends lie on one axis"));
+  }
+  data.figures.push_back(
+      {.name = "literature_greenhill_pinned",
+       .kind = "line",
+       .x = "moment_ratio",
+       .y = {"x_over_L", "y_over_L"},
+       .series = "series",
+       .title = "Greenhill's pinned shaft: the helix closes at M L / EI = 2 pi",
+       .xlabel = "M L / (2 pi EI)",
+       .ylabel = "tip offset x / L, y / L",
+       .caption = "The tip of the Table 2.1 rod (Cosserat) whose base is tilted by 0.2 rad, under "
+                  "a dead tip moment along the axis: the closed form sin(0.2) (sin kL, 1 - cos "
+                  "kL) / (kL), k = M / EI (the tangent precesses about the axis at k), and "
+                  "rodlab's rkmk-rk4 at N = 101. Both components vanish at M L / EI = 2 pi, the "
+                  "critical moment of the shaft pinned at both ends.",
+       .style = "lines+markers"});
+  f.context.emit(std::move(data));
+}
+
 // --- Bathe and Bolourchi's 45-degree bend ----------------------------------------------------
 
 namespace bb = reference::bathe_bolourchi;
@@ -486,8 +567,9 @@ void localised_helix(Literature& f) {
 }
 
 constexpr void (*kCases[])(Literature&) = {&self_weight_elastica, &post_buckled_elastica,
-                                           &critical_loads, &forty_five_degree_bend,
-                                           &frequencies, &localised_helix};
+                                           &critical_loads, &greenhill_pinned,
+                                           &forty_five_degree_bend, &frequencies,
+                                           &localised_helix};
 
 }  // namespace
 

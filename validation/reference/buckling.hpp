@@ -23,6 +23,18 @@
 //     tan(mu / 2) = mu / (2 (1 + g mu^2)),
 // the classic tan(mu/2) = mu/2, mu = 8.9868, for an unshearable rod (g = 0).
 //
+// Greenhill's pinned shaft (both ends on ball joints, the twisting moment M fixed along the
+// axis; Greenhill 1883, Timoshenko & Gere 2.18): the lateral displacement w = w_x + i w_y obeys
+// B w'' - i M w' = -N s + D with the end conditions w = 0 and B w'' - i M w' = 0 (the end moment
+// stays axial), so N = D = 0 and w = c0 + c2 exp(i M s / B): w(0) = w(L) = 0 has a non-zero
+// solution first at M L / B = 2 pi. Its mode carries no force at all, so the rod is under the
+// moment M e_z alone, for which the tangent precesses exactly, t' = (M / B) e_z x t (isotropic
+// bending: t x m = -B t'; shear and extension carry nothing): a rod tilted by theta0 at one end
+// and loaded only by M e_z at the other is a helix whose far end returns to the axis through the
+// first exactly at M L / B = 2 pi, for any theta0 and for Kirchhoff and Cosserat rods alike.
+// rodlab's base is always clamped, which here is the pin (the clamp carries no lateral moment:
+// the internal moment is M e_z everywhere), so the check measures that closing moment.
+//
 // Lateral-torsional buckling of a cantilever strip (Prandtl 1899, Michell 1899; Timoshenko &
 // Gere section 6.3) under a tip force P through the centroid in its stiff plane, the strip rigid
 // in that plane: the twist phi obeys GJ phi'' + P^2 (L - s)^2 / (EI_weak) phi = 0 with phi(0) = 0
