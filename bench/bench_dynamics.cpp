@@ -18,12 +18,12 @@
 #include <fmt/format.h>
 
 #include "rodlab/io/scene_loader.hpp"
-#include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/dynamics/shooting/bdf_alpha.hpp"
 #include "rodlab/solvers/dynamics/shooting/implicit_midpoint.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/ida_reference.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/implicit_midpoint_collocation.hpp"
 #include "rodlab/solvers/dynamics/semi_discrete/semi_discrete_rod.hpp"
+#include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/dynamics/variational/variational.hpp"
 
@@ -48,12 +48,7 @@ loads:
                      viscosity);
 }
 
-RestState straight(const DynamicProblem& p, int n) {
-  RestState s{std::vector<SE3>(n), std::vector<Vector6>(n, p.model().xi_star())};
-  for (int j = 0; j < n; ++j)
-    s.g[j] = rod::reference_pose(p.model(), p.base(), p.length() * j / (n - 1));
-  return s;
-}
+RestState straight(const DynamicProblem& p, int n) { return rest_shape(p, n); }
 
 /// `fixed_dt` > 0: that step instead of the scheme's automatic one; `grid`: the shooting
 /// schemes' spatial grid; `rule` and `viscosity`: variational's time rule and the rod's alpha.
