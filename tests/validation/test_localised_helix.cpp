@@ -11,7 +11,7 @@
 #include <cmath>
 #include <vector>
 
-#include "rodlab/solvers/statics/shooting.hpp"
+#include "checks/literature_helix.hpp"
 
 #include "reference/localised_helix.hpp"
 
@@ -76,7 +76,6 @@ BOOST_AUTO_TEST_CASE(rejects_a_moment_beyond_the_stability_limit) {
 }
 
 BOOST_AUTO_TEST_CASE(rkmk_rk4_between_its_end_poses_converges_to_it) {
-  using namespace rodlab::solvers::statics;
   const ref::LocalisedHelix helix(kB, kC, tension(), moment(), kL);
   // the unit rod: a circle section whose E I = 1 and G J = 2/3
   const double D = 0.1, I = 3.141592653589793 * std::pow(D, 4) / 64.0;
@@ -86,14 +85,7 @@ BOOST_AUTO_TEST_CASE(rkmk_rk4_between_its_end_poses_converges_to_it) {
   BOOST_TEST(std::abs(model.K_diag()[0] - kB) <= 1e-12);
   BOOST_TEST(std::abs(model.K_diag()[2] - kC) <= 1e-12);
   const int nodes = 401;
-  std::vector<double> s(nodes);
-  for (int i = 0; i < nodes; ++i) s[i] = -0.5 * kL + kL * i / (nodes - 1);
-  const auto exact = helix.samples(s);
-  StaticProblem P(model, exact.front().pose);
-  P.set_tip_clamped(exact.back().pose);
-  ShootingOptions options{nodes, 1e-12, 100, {}};
-  options.base_wrench_guess = 1.01 * exact.front().wrench;
-  const auto r = solve_shooting(P, RkmkMethod::rk4, options);
+  const auto [r, s, exact] = rodlab::validation::solve_localised_helix(model, helix, nodes);
   BOOST_REQUIRE_MESSAGE(r.converged, r.reason);
   double worst = 0.0;
   for (int i = 0; i < nodes; ++i)

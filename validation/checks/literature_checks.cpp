@@ -250,25 +250,30 @@ struct CriticalCase {
   std::function<std::optional<double>(double lambda, double h)> deflection;
 };
 
+/// The tip of the rod clamped at `base`, free, under the world tip wrench [moment; force]
+/// (rkmk-rk4, N = 101); nullopt when the solve fails.
+std::optional<Vector3> free_tip(const rod::RodModel& model, const SE3& base,
+                                const Vector6& wrench) {
+  StaticProblem P(model, base);
+  P.set_tip_wrench({wrench, loads::WrenchFrame::world});
+  const auto r = solve(P, "rkmk-rk4", 101);
+  if (!r.converged) return std::nullopt;
+  return tip(r);
+}
+
 /// The response of a clamped-free rod (the model's length) to a compressive tip load lambda
 /// and a lateral tip force h: its tip's x.
 std::optional<double> column_tip(const rod::RodModel& model, double lambda, double h) {
-  StaticProblem P(model, SE3::identity());
-  P.set_tip_wrench({(Vector6() << 0, 0, 0, h, 0, -lambda).finished(), loads::WrenchFrame::world});
-  const auto r = solve(P, "rkmk-rk4", 101);
-  if (!r.converged) return std::nullopt;
-  return tip(r).x();
+  const auto p = free_tip(model, SE3::identity(), (Vector6() << 0, 0, 0, h, 0, -lambda).finished());
+  return p ? std::optional<double>(p->x()) : std::nullopt;
 }
 
 /// The response of a cantilever strip (reference/buckling.hpp) to a tip force P through the
 /// centroid along its stiff plane (world y, bending about the section's x axis) and a lateral
 /// tip force h (world x): its tip's x.
 std::optional<double> strip_tip(const rod::RodModel& model, double P, double h) {
-  StaticProblem problem(model, SE3::identity());
-  problem.set_tip_wrench({(Vector6() << 0, 0, 0, h, P, 0).finished(), loads::WrenchFrame::world});
-  const auto r = solve(problem, "rkmk-rk4", 101);
-  if (!r.converged) return std::nullopt;
-  return tip(r).x();
+  const auto p = free_tip(model, SE3::identity(), (Vector6() << 0, 0, 0, h, P, 0).finished());
+  return p ? std::optional<double>(p->x()) : std::nullopt;
 }
 
 /// The response of a rod clamped at both ends, its tip's target `target`, to a uniform lateral
@@ -385,11 +390,8 @@ void critical_loads(Literature& f) {
 /// The tip of a rod whose clamped base is tilted by theta0 about world y and whose free tip
 /// carries the dead moment M along world z (reference/buckling.hpp, Greenhill's pinned shaft).
 std::optional<Vector3> tilted_rod_tip(const rod::RodModel& model, double theta0, double M) {
-  StaticProblem P(model, SE3(SO3::exp(Vector3(0, theta0, 0)), Vector3::Zero()));
-  P.set_tip_wrench({(Vector6() << 0, 0, M, 0, 0, 0).finished(), loads::WrenchFrame::world});
-  const auto r = solve(P, "rkmk-rk4", 101);
-  if (!r.converged) return std::nullopt;
-  return tip(r);
+  return free_tip(model, SE3(SO3::exp(Vector3(0, theta0, 0)), Vector3::Zero()),
+                  (Vector6() << 0, 0, M, 0, 0, 0).finished());
 }
 
 /// Greenhill's pinned shaft: the moment M at which the tilted rod's tip returns to the axis

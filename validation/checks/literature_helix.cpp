@@ -53,14 +53,7 @@ struct HelixErrors {
 HelixErrors solve_helix(const rod::RodModel& model, const reference::LocalisedHelix& helix,
                         double T, double M, int nodes) {
   const double L = model.length();
-  std::vector<double> s(nodes);
-  for (int i = 0; i < nodes; ++i) s[i] = -0.5 * L + L * i / (nodes - 1);
-  const auto exact = helix.samples(s);
-  StaticProblem P(model, exact.front().pose);
-  P.set_tip_clamped(exact.back().pose);
-  ShootingOptions options{nodes, 1e-12, 100, {}};
-  options.base_wrench_guess = 1.01 * exact.front().wrench;
-  const auto r = solve_shooting(P, RkmkMethod::rk4, options);
+  const auto [r, s, exact] = solve_localised_helix(model, helix, nodes);
   HelixErrors e;
   e.converged = r.converged;
   e.reason = r.reason;
@@ -82,6 +75,21 @@ HelixErrors solve_helix(const rod::RodModel& model, const reference::LocalisedHe
 }
 
 }  // namespace
+
+LocalisedHelixSolve solve_localised_helix(const rod::RodModel& model,
+                                          const reference::LocalisedHelix& helix, int nodes) {
+  const double L = model.length();
+  LocalisedHelixSolve out;
+  out.s.resize(nodes);
+  for (int i = 0; i < nodes; ++i) out.s[i] = -0.5 * L + L * i / (nodes - 1);
+  out.exact = helix.samples(out.s);
+  StaticProblem P(model, out.exact.front().pose);
+  P.set_tip_clamped(out.exact.back().pose);
+  ShootingOptions options{nodes, 1e-12, 100, {}};
+  options.base_wrench_guess = 1.01 * out.exact.front().wrench;
+  out.result = solve_shooting(P, RkmkMethod::rk4, options);
+  return out;
+}
 
 std::vector<Check> localised_helix_checks(const ValidationContext& context) {
   const auto model = reference::table21_model(rod::ModelKind::kirchhoff);
