@@ -5,6 +5,7 @@
 // instantiated in different translation units on purpose: in one unit the second
 // instantiation's extra calls of small_angle::exp and ::log made GCC stop inlining them into the
 // plain step, which cost it 10-15 % (bench_dynamics, A/B).
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -13,6 +14,7 @@
 
 #include "discrete_legendre.hpp"
 #include "kirchhoff_constraint.hpp"
+#include "packed_pair.hpp"
 #include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
 #include "rodlab/solvers/dynamics/variational/variational.hpp"
@@ -88,6 +90,16 @@ class Variational final : public Stepper {
       act_.emplace(problem, n_, legendre_);
       xi_new_.assign(n_ - 1, Vector6::Zero());
     }
+    // The packed step (packed_pass) covers the plain Cosserat rod with its loads: no
+    // actuators, no cables entering from outside, no Kirchhoff constraint.
+    packed_ = !kActuated && options.packed && !kirchhoff_ && entries_.empty() &&
+              !problem.has_actuators();
+    if (packed_) {
+      E_.assign(n_, SE3::identity());
+      lambda_.assign(n_, Vector6::Zero());
+      xi_star_.resize(n_ - 1);
+      for (int j = 0; j + 1 < n_; ++j) xi_star_[j] = problem.model().segment_xi_star(j, n_);
+    }
   }
 
   StepStatus step(double t, double dt) override {
@@ -127,47 +139,52 @@ class Variational final : public Stepper {
       F = &act_->forces(t1, xi_new_);
       F_work = act_->work_forces();
     }
-    // One pass from the base to the tip: segment j needs E^j and E^(j+1) (3.26) from the old
-    // velocities; node j needs the stresses of segments j - 1 and j (3.41) and then updates its
-    // velocity (3.42), which no later segment reads.
-    SE3 E = SE3::identity();  // E^j; the base does not move
-    Vector6 lambda_prev = Vector6::Zero();
-    for (int j = 0; j + 1 < n_; ++j) {
-      const SE3 E_next = small::exp(dt * eta_[j + 1]);
-      // (3.38)-(3.40): the new strain from exact compatibility, the pose, the stress.
-      if constexpr (!kActuated) G_[j] = E.inverse() * G_[j] * E_next;  // (else in the pre-pass)
-      small::EF k;
-      const Vector6 x = small::log(G_[j], k);  // ds xi
-      const Vector6 xi = x / ds_;
-      const Vector6 xi_dot = (xi - xi_[j]) / dt;
-      const double s_mid = (j + 0.5) * ds_;
-      if (actuators) {
-        work -= ds_ * P_.actuator_length_change(xi_[j], xi, s_mid, F_work) / dt;
-        if constexpr (kActuated) act_->add_segment_power(j, xi_[j], xi, dt);
-      }
-      xi_[j] = xi;
-      g_[j + 1] = g_[j] * G_[j];
-      Vector6 sigma;
-      if constexpr (kActuated) {
-        sigma = P_.internal_wrench(xi, xi_dot, s_mid, *F);  // with the muscles' own stiffness
-        dissipated += ds_ * P_.embedded_dissipation(xi_dot, s_mid);
-      } else {
-        sigma = kirchhoff_ ? kirchhoff_stress(j, xi, xi_dot, t1)
-                           : P_.internal_wrench(xi, xi_dot, s_mid, t1);
-      }
-      const Vector6 lambda = small::dexp_inv_transpose_apply(x, sigma, k);
-      dissipated += ds_ * xi_dot.dot(V.cwiseProduct(xi_dot));
-      if (trapezoidal_damping_) x_[j] = x, ef_[j] = k, rate_[j] = xi_dot;
-      if (j > 0 &&
-          !node(j, t1, dt, dt, E, lambda, lambda_prev, applied, drag, dissipated, work, F))
-        return diverged(j, t1, dt);
-      lambda_prev = lambda;
-      E = E_next;
-    }
     const int tip = n_ - 1;
-    if (!node(tip, t1, dt, dt, E, P_.tip_load(g_[tip].rotation(), t1), lambda_prev, applied,
-              drag, dissipated, work, F))
-      return diverged(tip, t1, dt);
+    if (packed_) {
+      if (const int j = packed_pass(t1, dt, applied, drag, dissipated, work); j >= 0)
+        return diverged(j, t1, dt);
+    } else {
+      // One pass from the base to the tip: segment j needs E^j and E^(j+1) (3.26) from the old
+      // velocities; node j needs the stresses of segments j - 1 and j (3.41) and then updates its
+      // velocity (3.42), which no later segment reads.
+      SE3 E = SE3::identity();  // E^j; the base does not move
+      Vector6 lambda_prev = Vector6::Zero();
+      for (int j = 0; j + 1 < n_; ++j) {
+        const SE3 E_next = small::exp(dt * eta_[j + 1]);
+        // (3.38)-(3.40): the new strain from exact compatibility, the pose, the stress.
+        if constexpr (!kActuated) G_[j] = E.inverse() * G_[j] * E_next;  // (else in the pre-pass)
+        small::EF k;
+        const Vector6 x = small::log(G_[j], k);  // ds xi
+        const Vector6 xi = x / ds_;
+        const Vector6 xi_dot = (xi - xi_[j]) / dt;
+        const double s_mid = (j + 0.5) * ds_;
+        if (actuators) {
+          work -= ds_ * P_.actuator_length_change(xi_[j], xi, s_mid, F_work) / dt;
+          if constexpr (kActuated) act_->add_segment_power(j, xi_[j], xi, dt);
+        }
+        xi_[j] = xi;
+        g_[j + 1] = g_[j] * G_[j];
+        Vector6 sigma;
+        if constexpr (kActuated) {
+          sigma = P_.internal_wrench(xi, xi_dot, s_mid, *F);  // with the muscles' own stiffness
+          dissipated += ds_ * P_.embedded_dissipation(xi_dot, s_mid);
+        } else {
+          sigma = kirchhoff_ ? kirchhoff_stress(j, xi, xi_dot, t1)
+                             : P_.internal_wrench(xi, xi_dot, s_mid, t1);
+        }
+        const Vector6 lambda = small::dexp_inv_transpose_apply(x, sigma, k);
+        dissipated += ds_ * xi_dot.dot(V.cwiseProduct(xi_dot));
+        if (trapezoidal_damping_) x_[j] = x, ef_[j] = k, rate_[j] = xi_dot;
+        if (j > 0 &&
+            !node(j, t1, dt, dt, E, lambda, lambda_prev, applied, drag, dissipated, work, F))
+          return diverged(j, t1, dt);
+        lambda_prev = lambda;
+        E = E_next;
+      }
+      if (!node(tip, t1, dt, dt, E, P_.tip_load(g_[tip].rotation(), t1), lambda_prev, applied,
+                drag, dissipated, work, F))
+        return diverged(tip, t1, dt);
+    }
     // A clamped tip node is held: its pose is the clamp's and eta = mu = 0 (so the last
     // segment's E^(N-1) above is the identity); the clamp's reaction, lambda^(N-2) carried to the
     // tip, does no work. The tip's node() above ran with eta_old = 0 (it added nothing to the
@@ -324,6 +341,153 @@ class Variational final : public Stepper {
     return legendre_.solve(dt, mu_[j], mu_old, eta_[j]);  // (3.42)
   }
 
+  // --- the packed step (packed_pair.hpp): the plain Cosserat step on pairs of nodes ---------
+  // The same equations as the general loop of step(), in three passes: every E^j (3.26) from the
+  // old velocities; every segment (3.38)-(3.40), then the poses g_(j+1) = g_j G_j; every node
+  // (3.41)-(3.42). The segments are independent of one another given the E^j, and so are the
+  // nodes given the stresses, so each pass takes two at a time. A pair with a lane above the
+  // small-angle bounds takes the scalar kernels; the tip node, with its half cell and its load,
+  // is node(). Returns -1, or the node whose (3.42) diverged.
+  int packed_pass(double t1, double dt, bool applied, bool drag, double& dissipated,
+                  double& work) {
+    packed_exponentials(dt);
+    packed_segments(dt, dissipated);
+    const int tip = n_ - 1;
+    if (const int j = packed_nodes(t1, dt, applied, drag, dissipated, work); j >= 0) return j;
+    lambda_[tip] = P_.tip_load(g_[tip].rotation(), t1);
+    return node(tip, t1, dt, dt, E_[tip], lambda_[tip], lambda_[tip - 1], applied, drag,
+                dissipated, work, nullptr)
+               ? -1
+               : tip;
+  }
+
+  /// E^j = exp(dt eta_j), j = 1..N-1 (E^0: the base does not move). Pairs (j, k); an odd count
+  /// repeats the last node in both lanes.
+  void packed_exponentials(double dt) {
+    constexpr double kSmall2 = small::kSmallAngle * small::kSmallAngle;
+    for (int j = 1; j < n_; j += 2) {
+      const int k = std::min(j + 1, n_ - 1);
+      const packed::V6 x = dt * packed::load(eta_[j], eta_[k]);
+      const packed::D2 t2 = packed::dot(x.w, x.w);
+      if (packed::any(!(t2 < kSmall2))) {
+        E_[j] = small::exp(dt * eta_[j]);
+        E_[k] = small::exp(dt * eta_[k]);
+        continue;
+      }
+      const packed::Pose E = packed::exp(x, t2);
+      E_[j] = packed::lane(E, 0);
+      E_[k] = packed::lane(E, 1);
+    }
+  }
+
+  /// Segments j = 0..N-2: G_j = E_j^-1 G_j E_(j+1) (3.38), xi_j, the stress and its wrench
+  /// lambda_j = dexp^-T_(ds xi) sigma (3.40), the viscous dissipation; then the poses.
+  void packed_segments(double dt, double& dissipated) {
+    const double* K = P_.model().K_diag().data();
+    const double* V = P_.model().V_diag().data();
+    const double inv_ds = 1.0 / ds_, inv_dt = 1.0 / dt;
+    packed::D2 dissipation = packed::splat(0.0);
+    for (int j = 0; j + 1 < n_; j += 2) {
+      const int k = std::min(j + 1, n_ - 2);
+      const packed::Pose G = packed::compose(
+          packed::inverse_compose(packed::load(E_[j], E_[k]), packed::load(G_[j], G_[k])),
+          packed::load(E_[j + 1], E_[k + 1]));
+      packed::D2 e, f;
+      bool small_angles;
+      packed::V6 x = packed::log(G, e, f, small_angles);  // ds xi
+      if (!small_angles) {
+        small::EF k0, k1;
+        const Vector6 x0 = small::log(packed::lane(G, 0), k0);
+        const Vector6 x1 = small::log(packed::lane(G, 1), k1);
+        x = packed::load(x0, x1);
+        e = packed::D2{k0.e, k1.e};
+        f = packed::D2{k0.f, k1.f};
+      }
+      const packed::V6 xi = inv_ds * x;
+      const packed::V6 xi_dot = inv_dt * (xi - packed::load(xi_[j], xi_[k]));
+      const packed::V6 sigma = packed::diag(K, xi - packed::load(xi_star_[j], xi_star_[k])) +
+                               packed::diag(V, xi_dot);  // (3.10)
+      const packed::V6 lambda = packed::dexp_inv_transpose_apply(x, sigma, e, f);
+      const packed::D2 power = packed::dot(xi_dot, packed::diag(V, xi_dot));
+      dissipation += k != j ? power : packed::D2{power[0], 0.0};
+      for (int l = 0; l < (k != j ? 2 : 1); ++l) {
+        const int s = l == 0 ? j : k;
+        G_[s] = packed::lane(G, l);
+        xi_[s] = packed::lane(xi, l);
+        lambda_[s] = packed::lane(lambda, l);
+        if (trapezoidal_damping_)
+          x_[s] = packed::lane(x, l), ef_[s] = {e[l], f[l]}, rate_[s] = packed::lane(xi_dot, l);
+      }
+    }
+    dissipated += ds_ * (dissipation[0] + dissipation[1]);
+    for (int j = 0; j + 1 < n_; ++j) g_[j + 1] = g_[j] * G_[j];  // (3.39)
+  }
+
+  /// Nodes j = 1..N-2 (node() without the tip and the cables): the balance (3.41) with
+  /// lambda_j and lambda_(j-1), gravity, the distributed load and drag, the impulse over dt and
+  /// the velocity from (3.42).
+  int packed_nodes(double t1, double dt, bool applied, bool drag, double& dissipated,
+                   double& work) {
+    const Vector3 weight = P_.weight_per_length();
+    const packed::V3 weight_W{packed::splat(weight.x()), packed::splat(weight.y()),
+                              packed::splat(weight.z())};
+    const double* M = legendre_.M.data();
+    const packed::D2 zero = packed::splat(0.0);
+    packed::D2 kinetic = zero;
+    for (int j = 1; j + 1 < n_; j += 2) {
+      const int k = std::min(j + 1, n_ - 2);
+      const packed::V6 eta_old = packed::load(eta_[j], eta_[k]);
+      const packed::V6 outer = packed::coAd_apply(packed::load(G_[j - 1], G_[k - 1]),
+                                                  packed::load(lambda_[j - 1], lambda_[k - 1]));
+      packed::V6 bar{{zero, zero, zero},
+                     packed::rotate(packed::conjugate(packed::load(g_[j], g_[k]).q), weight_W)};
+      if (applied || drag) bar = bar + packed_node_loads(j, k, t1, dissipated, work);
+      const packed::D2 kin = packed::dot(eta_old, packed::diag(M, eta_old));
+      kinetic += k != j ? kin : packed::D2{kin[0], 0.0};
+      const packed::V6 force = packed::load(lambda_[j], lambda_[k]) - outer + ds_ * bar;
+      const packed::V6 mu_old = packed::load(mu_[j], mu_[k]);
+      const packed::V6 mu =
+          packed::coAd_apply(packed::load(E_[j], E_[k]), mu_old) + (dt / ds_) * force;
+      packed::V6 eta = eta_old;
+      const int solved = packed::solve_legendre(M, legendre_.M_inv.data(), legendre_.tol,
+                                                legendre_.max_iterations, dt, mu, mu_old, eta);
+      for (int l = 0; l < (k != j ? 2 : 1); ++l) {
+        const int s = l == 0 ? j : k;
+        if (trapezoidal_damping_) eta_old_[s] = eta_[s];
+        mu_[s] = packed::lane(mu, l);
+        if (solved == 1) {
+          eta_[s] = packed::lane(eta, l);
+        } else if (solved == 0 || !legendre_.solve(dt, mu_[s], packed::lane(mu_old, l), eta_[s])) {
+          return s;  // (3.42) diverged
+        }
+      }
+    }
+    kinetic_old_ += 0.5 * ds_ * (kinetic[0] + kinetic[1]);
+    return -1;
+  }
+
+  /// Nodes j and k's distributed load and drag per unit length (node()'s), with their power.
+  packed::V6 packed_node_loads(int j, int k, double t1, double& dissipated, double& work) {
+    Vector6 bar[2];
+    for (int l = 0; l < 2; ++l) {
+      const int s = l == 0 ? j : k;
+      const Vector6& eta_old = eta_[s];
+      bar[l].setZero();
+      const bool counted = l == 0 || k != j;
+      if ((P_.applied_load(SO3(), t1).array() != 0.0).any()) {
+        const Vector6 a = P_.applied_load(g_[s].rotation(), t1);
+        bar[l] += a;
+        if (counted) work += ds_ * a.dot(eta_old);
+      }
+      if (P_.has_drag()) {
+        const Vector6 d = P_.drag_load(eta_old);
+        bar[l] += d;
+        if (counted) dissipated -= ds_ * d.dot(eta_old);
+      }
+    }
+    return packed::load(bar[0], bar[1]);
+  }
+
   /// Störmer-Verlet's first half kick (VariationalStep::verlet; docs/dynamics.md "Second order
   /// in time"): the velocity over the first step gets half a step's impulse at the initial
   /// configuration, nu_(1/2) = nu_0 + (dt / 2) F(g_0, t) per node, so that the velocities are
@@ -455,6 +619,11 @@ class Variational final : public Stepper {
   bool trapezoidal_damping_ = false;
   std::vector<Vector6> x_, rate_, eta_old_;
   std::vector<small::EF> ef_;
+  // The packed step (packed_pass): whether it runs, and per step E^j, the segments' stresses
+  // lambda_j (the tip load last) and each segment's rest strain.
+  bool packed_ = false;
+  std::vector<SE3> E_;
+  std::vector<Vector6> lambda_, xi_star_;
 };
 
 }  // namespace

@@ -88,6 +88,10 @@ class SO3 {
   /// From a rotation matrix (assumed orthonormal with det +1; Eigen uses Shepperd's method).
   static SO3 from_matrix(const Matrix3& R) { return from_quaternion(Quaternion(R)); }
 
+  /// From a quaternion of unit norm to rounding (as operator* leaves its product), kept as it
+  /// is: the packed kernels of the variational step compose rotations themselves.
+  static SO3 from_unit_quaternion(const Quaternion& q) { return SO3(q, Unchecked{}); }
+
   /// From any non-zero quaternion; it is normalised.
   static SO3 from_quaternion(const Quaternion& q) { return SO3(q.normalized(), Unchecked{}); }
 
