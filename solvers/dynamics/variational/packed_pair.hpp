@@ -215,13 +215,13 @@ inline V6 dexp_inv_transpose_apply(const V6& xi, const V6& lambda, D2 e, D2 f) {
 inline int solve_legendre(const double* M, const double* M_inv, double tol, int max_iterations,
                           double dt, const V6& mu, const V6& mu_old, V6& eta) {
   const V6 eta_old = eta;
-  const V6 M_eta_old = diag(M, eta_old);
-  auto newton_step = [&](const V6& r) {
+  // the first-order Jacobian at the iterate x (M x given)
+  auto newton_step = [&](const V6& r, const V6& x, const V6& Mx) {
     const V6 y = diag(M_inv, r);
-    const V6 By = coad_apply(eta_old, r) + coad_apply(y, M_eta_old);
+    const V6 By = coad_apply(x, r) + coad_apply(y, Mx);
     return y + (0.5 * dt) * diag(M_inv, By);
   };
-  V6 x = eta_old - newton_step(mu_old - mu);
+  V6 x = eta_old - newton_step(mu_old - mu, eta_old, diag(M, eta_old));
   V6 result = x;
   Mask done = {0, 0};
   const double tol2 = tol * tol;
@@ -241,7 +241,7 @@ inline int solve_legendre(const double* M, const double* M_inv, double tol, int 
       eta = result;
       return 1;
     }
-    const V6 step = newton_step(r);
+    const V6 step = newton_step(r, x, Mx);
     x = x - step;
     const Mask second = ~done & (dot(step, diag(M, step)) <= tol2 * dot(x, diag(M, x)));
     result = select(second, x, result);
