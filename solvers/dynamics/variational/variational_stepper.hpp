@@ -343,7 +343,7 @@ class Variational final : public Stepper {
 
   // --- the packed step (packed_pair.hpp): the plain Cosserat step on pairs of nodes ---------
   // The same equations as the general loop of step(), in three passes: every E^j (3.26) from the
-  // old velocities; every segment (3.38)-(3.40), then the poses g_(j+1) = g_j G_j; every node
+  // old velocities; every segment (3.38), (3.40); every node's pose (3.39) and balance
   // (3.41)-(3.42). The segments are independent of one another given the E^j, and so are the
   // nodes given the stresses, so each pass takes two at a time. A pair with a lane above the
   // small-angle bounds takes the scalar kernels; the tip node, with its half cell and its load,
@@ -381,7 +381,7 @@ class Variational final : public Stepper {
   }
 
   /// Segments j = 0..N-2: G_j = E_j^-1 G_j E_(j+1) (3.38), xi_j, the stress and its wrench
-  /// lambda_j = dexp^-T_(ds xi) sigma (3.40), the viscous dissipation; then the poses.
+  /// lambda_j = dexp^-T_(ds xi) sigma (3.40), the viscous dissipation.
   void packed_segments(double dt, double& dissipated) {
     const double* K = P_.model().K_diag().data();
     const double* V = P_.model().V_diag().data();
@@ -420,12 +420,11 @@ class Variational final : public Stepper {
       }
     }
     dissipated += ds_ * (dissipation[0] + dissipation[1]);
-    for (int j = 0; j + 1 < n_; ++j) g_[j + 1] = g_[j] * G_[j];  // (3.39)
   }
 
-  /// Nodes j = 1..N-2 (node() without the tip and the cables): the balance (3.41) with
-  /// lambda_j and lambda_(j-1), gravity, the distributed load and drag, the impulse over dt and
-  /// the velocity from (3.42).
+  /// Nodes j = 1..N-2 (node() without the tip and the cables), and every node's pose: the
+  /// balance (3.41) with lambda_j and lambda_(j-1), gravity, the distributed load and drag, the
+  /// impulse over dt and the velocity from (3.42).
   int packed_nodes(double t1, double dt, bool applied, bool drag, double& dissipated,
                    double& work) {
     const Vector3 weight = P_.weight_per_length();
@@ -436,6 +435,10 @@ class Variational final : public Stepper {
     packed::D2 kinetic = zero;
     for (int j = 1; j + 1 < n_; j += 2) {
       const int k = std::min(j + 1, n_ - 2);
+      // the poses g_(j+1) = g_j G_j (3.39): a serial chain, here where the independent work of
+      // the pairs before hides its latency (as a pass of its own it was 9 % of the step)
+      g_[j] = g_[j - 1] * G_[j - 1];
+      if (k != j) g_[k] = g_[j] * G_[j];
       const packed::V6 eta_old = packed::load(eta_[j], eta_[k]);
       const packed::V6 outer = packed::coAd_apply(packed::load(G_[j - 1], G_[k - 1]),
                                                   packed::load(lambda_[j - 1], lambda_[k - 1]));
@@ -463,6 +466,7 @@ class Variational final : public Stepper {
       }
     }
     kinetic_old_ += 0.5 * ds_ * (kinetic[0] + kinetic[1]);
+    g_[n_ - 1] = g_[n_ - 2] * G_[n_ - 2];
     return -1;
   }
 
