@@ -542,6 +542,7 @@ class Variational final : public Stepper {
   /// c) < 4: docs/dynamics.md "Second order in time"). The dissipation booked by the main pass
   /// is replaced by the mean rates'. Returns -1, or the node whose (3.42) diverged.
   [[gnu::noinline]] int correct_damping(double dt, bool drag, double& dissipated) {
+    if (packed_) return packed_correct_damping(dt, drag, dissipated);
     const Vector6& V = P_.model().V_diag();
     SE3 E = SE3::identity();  // E^j at the predicted velocities; the base does not move
     Vector6 lambda_prev = Vector6::Zero();
@@ -558,23 +559,92 @@ class Variational final : public Stepper {
         dissipated += ds_ * (mean.dot(V.cwiseProduct(mean)) - rate_[j].dot(V.cwiseProduct(rate_[j])));
         lambda = small::dexp_inv_transpose_apply(x_[j], d_sigma, ef_[j]);
       }
-      if (j > 0 && !(clamped_ && j == n_ - 1)) {
-        const double w = j == n_ - 1 ? 0.5 * ds_ : ds_;
-        Vector6 force = lambda - G_[j - 1].coAd_apply(lambda_prev);
-        if (drag) {
-          const Vector6 mean = 0.5 * (eta_old_[j] + eta_[j]);
-          const Vector6 d_mean = P_.drag_load(mean), d_old = P_.drag_load(eta_old_[j]);
-          force += w * (d_mean - d_old);
-          dissipated -= w * (d_mean.dot(mean) - d_old.dot(eta_old_[j]));
-        }
-        const Vector6 mu_predicted = mu_[j];
-        mu_[j] += (dt / w) * force;
-        if (!legendre_.solve(dt, mu_[j], mu_predicted, eta_[j])) return j;  // (3.42)
-      }
+      if (j > 0 && !correct_node(j, dt, lambda, lambda_prev, drag, dissipated)) return j;
       lambda_prev = lambda;
       E = E_next;
     }
     return -1;
+  }
+
+  /// correct_damping at node j with the stress corrections lambda of segment j (zero at the
+  /// tip) and lambda_prev of segment j - 1. A clamped tip is held.
+  bool correct_node(int j, double dt, const Vector6& lambda, const Vector6& lambda_prev, bool drag,
+                    double& dissipated) {
+    if (clamped_ && j == n_ - 1) return true;
+    const double w = j == n_ - 1 ? 0.5 * ds_ : ds_;
+    Vector6 force = lambda - G_[j - 1].coAd_apply(lambda_prev);
+    if (drag) force += drag_correction(j, w, dissipated);
+    const Vector6 mu_predicted = mu_[j];
+    mu_[j] += (dt / w) * force;
+    return legendre_.solve(dt, mu_[j], mu_predicted, eta_[j]);  // (3.42)
+  }
+
+  /// Node j's drag at the mean of its velocities before and after t1 less the drag the main
+  /// pass applied (at the velocity before), times w; the dissipation booked likewise.
+  Vector6 drag_correction(int j, double w, double& dissipated) const {
+    const Vector6 mean = 0.5 * (eta_old_[j] + eta_[j]);
+    const Vector6 d_mean = P_.drag_load(mean), d_old = P_.drag_load(eta_old_[j]);
+    dissipated -= w * (d_mean.dot(mean) - d_old.dot(eta_old_[j]));
+    return w * (d_mean - d_old);
+  }
+
+  /// correct_damping on pairs (packed_pass): E^j at the predicted velocities, the segments'
+  /// stress corrections, the interior nodes' impulses and velocities; the tip is correct_node.
+  int packed_correct_damping(double dt, bool drag, double& dissipated) {
+    packed_exponentials(dt);
+    const double* V = P_.model().V_diag().data();
+    const double inv_ds_dt = 1.0 / (ds_ * dt);
+    packed::D2 dissipation = packed::splat(0.0);
+    for (int j = 0; j + 1 < n_; j += 2) {
+      const int k = std::min(j + 1, n_ - 2);
+      const packed::Pose G = packed::compose(
+          packed::inverse_compose(packed::load(E_[j], E_[k]), packed::load(G_[j], G_[k])),
+          packed::load(E_[j + 1], E_[k + 1]));
+      packed::D2 e_after, f_after;
+      bool small_angles;
+      packed::V6 x_after = packed::log(G, e_after, f_after, small_angles);
+      if (!small_angles)
+        x_after = packed::load(small::log(packed::lane(G, 0)), small::log(packed::lane(G, 1)));
+      const packed::V6 x = packed::load(x_[j], x_[k]), rate = packed::load(rate_[j], rate_[k]);
+      const packed::V6 mean = 0.5 * (rate + inv_ds_dt * (x_after - x));
+      const packed::D2 power =
+          packed::dot(mean, packed::diag(V, mean)) - packed::dot(rate, packed::diag(V, rate));
+      dissipation += k != j ? power : packed::D2{power[0], 0.0};
+      const packed::V6 lambda = packed::dexp_inv_transpose_apply(
+          x, packed::diag(V, mean - rate), packed::D2{ef_[j].e, ef_[k].e},
+          packed::D2{ef_[j].f, ef_[k].f});
+      lambda_[j] = packed::lane(lambda, 0);
+      lambda_[k] = packed::lane(lambda, 1);
+    }
+    dissipated += ds_ * (dissipation[0] + dissipation[1]);
+    for (int j = 1; j + 1 < n_; j += 2) {
+      const int k = std::min(j + 1, n_ - 2);
+      packed::V6 force = packed::load(lambda_[j], lambda_[k]) -
+                         packed::coAd_apply(packed::load(G_[j - 1], G_[k - 1]),
+                                            packed::load(lambda_[j - 1], lambda_[k - 1]));
+      if (drag) {
+        const Vector6 d0 = drag_correction(j, ds_, dissipated);
+        force = force + packed::load(d0, k != j ? drag_correction(k, ds_, dissipated) : d0);
+      }
+      const packed::V6 mu_predicted = packed::load(mu_[j], mu_[k]);
+      const packed::V6 mu = mu_predicted + (dt / ds_) * force;
+      packed::V6 eta = packed::load(eta_[j], eta_[k]);
+      const int solved = packed::solve_legendre(legendre_.M.data(), legendre_.M_inv.data(),
+                                                legendre_.tol, legendre_.max_iterations, dt, mu,
+                                                mu_predicted, eta);
+      for (int l = 0; l < (k != j ? 2 : 1); ++l) {
+        const int s = l == 0 ? j : k;
+        mu_[s] = packed::lane(mu, l);
+        if (solved == 1) {
+          eta_[s] = packed::lane(eta, l);
+        } else if (solved == 0 ||
+                   !legendre_.solve(dt, mu_[s], packed::lane(mu_predicted, l), eta_[s])) {
+          return s;  // (3.42) diverged
+        }
+      }
+    }
+    const int tip = n_ - 1;
+    return correct_node(tip, dt, Vector6::Zero(), lambda_[tip - 1], drag, dissipated) ? -1 : tip;
   }
 
   /// Kirchhoff rods: segment j's own wrench has no force part (nu = nu* holds; the force across
