@@ -51,9 +51,10 @@ loads:
 RestState straight(const DynamicProblem& p, int n) { return rest_shape(p, n); }
 
 /// `fixed_dt` > 0: that step instead of the scheme's automatic one; `grid`: the shooting
-/// schemes' spatial grid; `rule` and `viscosity`: variational's time rule and the rod's alpha.
+/// schemes' spatial grid; `rule` and `viscosity`: variational's time rule and the rod's alpha;
+/// `packed`: variational's packed step (VariationalOptions::packed).
 void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt,
-                    ShootingGrid grid, VariationalStep rule, double viscosity) {
+                    ShootingGrid grid, VariationalStep rule, double viscosity, bool packed) {
   const auto scene = io::load_scene_from_string(cantilever(viscosity), "bench.yaml");
   const auto problem = DynamicProblem::from_scene(scene);
   const int n = static_cast<int>(state.range(0));
@@ -64,7 +65,7 @@ void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt
       return make_implicit_midpoint_collocation(problem, {.nodes = n}, initial);
     if (scheme == "bdf-alpha")  // Till's alpha = -0.2
       return make_bdf_alpha(problem, {{n, 1e-10, 50, grid}, kDefaultBdfAlpha}, initial);
-    return scheme == "variational" ? make_variational(problem, {n, 1e-12, 20, rule}, initial)
+    return scheme == "variational" ? make_variational(problem, {n, 1e-12, 20, rule, packed}, initial)
                                    : make_implicit_midpoint(problem, {n, 1e-10, 50, grid}, initial);
   };
   // Time steps 10..kWindow of runs from rest, restarted outside the timing: the same window of
@@ -168,7 +169,7 @@ const bool registered = [] {
   for (const char* scheme : {"variational", "implicit-midpoint", "bdf-alpha"}) {
     auto* b = benchmark::RegisterBenchmark((std::string("step/") + scheme).c_str(), step_benchmark,
                                            std::string(scheme), 0.0, ShootingGrid::euler,
-                                           VariationalStep::verlet, 300.0);
+                                           VariationalStep::verlet, 300.0, true);
     for (int n : {10, 20, 50, 100}) b->Arg(n);
     b->Unit(benchmark::kMicrosecond);
   }
@@ -178,18 +179,27 @@ const bool registered = [] {
         std::tuple{"step/variational/step=symplectic-euler", VariationalStep::symplectic_euler,
                    300.0}}) {
     auto* b = benchmark::RegisterBenchmark(name, [rule, viscosity](benchmark::State& state) {
-      step_benchmark(state, "variational", 0.0, ShootingGrid::euler, rule, viscosity);
+      step_benchmark(state, "variational", 0.0, ShootingGrid::euler, rule, viscosity, true);
     });
     for (int n : {10, 20, 50, 100}) b->Arg(n);
     b->Unit(benchmark::kMicrosecond);
   }
+  // The general loop of the variational step (VariationalOptions::packed = false), which Kirchhoff
+  // rods, cables and actuators take: the packed step's reference.
+  auto* loop = benchmark::RegisterBenchmark(
+      "step/variational/undamped/general-loop", [](benchmark::State& state) {
+        step_benchmark(state, "variational", 0.0, ShootingGrid::euler, VariationalStep::verlet,
+                       0.0, false);
+      });
+  for (int n : {10, 100}) loop->Arg(n);
+  loop->Unit(benchmark::kMicrosecond);
   // The shooting schemes on the staggered grid (solver.grid: staggered).
   for (const char* scheme : {"implicit-midpoint", "bdf-alpha"}) {
     auto* b = benchmark::RegisterBenchmark(
         (std::string("step/") + scheme + "/grid=staggered").c_str(),
         [scheme](benchmark::State& state) {
           step_benchmark(state, scheme, 0.0, ShootingGrid::staggered, VariationalStep::verlet,
-                         300.0);
+                         300.0, true);
         });
     for (int n : {10, 20, 50, 100}) b->Arg(n);
     b->Unit(benchmark::kMicrosecond);
@@ -197,7 +207,8 @@ const bool registered = [] {
   // implicit-midpoint-collocation: KINSOL + KLU on the whole rod per step (cost per node-step).
   auto* c = benchmark::RegisterBenchmark("step/implicit-midpoint-collocation", step_benchmark,
                                          std::string("implicit-midpoint-collocation"), 0.0,
-                                         ShootingGrid::euler, VariationalStep::verlet, 300.0);
+                                         ShootingGrid::euler, VariationalStep::verlet, 300.0,
+                                         true);
   for (int n : {20, 100}) c->Arg(n);
   c->Unit(benchmark::kMicrosecond);
   // The same at fine steps (the scheme has no lower time-step bound; fine-dt studies).
@@ -207,7 +218,7 @@ const bool registered = [] {
             .c_str(),
         [dt](benchmark::State& state) {
           step_benchmark(state, "implicit-midpoint-collocation", dt, ShootingGrid::euler,
-                         VariationalStep::verlet, 300.0);
+                         VariationalStep::verlet, 300.0, true);
         });
     for (int n : {20, 100}) f->Arg(n);
     f->Unit(benchmark::kMicrosecond);
