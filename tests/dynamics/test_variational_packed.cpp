@@ -123,3 +123,12 @@ BOOST_AUTO_TEST_CASE(clamped_tip) {
       "clamped-clamped.yaml");
   for (const int nodes : {10, 11}) check(compare(scene, nodes, d::VariationalStep::verlet, 800));
 }
+
+// A Kirchhoff rod (nu = nu*: no force part in the segments' stress, the constraint solve after
+// the packed pass), released under gravity, undamped and viscous.
+BOOST_AUTO_TEST_CASE(kirchhoff_rod) {
+  for (const double alpha : {0.0, 300.0})
+    for (const int nodes : {10, 11})
+      check(compare(rod_scene("{gravity: [-9.81, 0, 0]}", "{}", alpha, "kirchhoff"), nodes,
+                    d::VariationalStep::verlet, 800));
+}

@@ -90,10 +90,9 @@ class Variational final : public Stepper {
       act_.emplace(problem, n_, legendre_);
       xi_new_.assign(n_ - 1, Vector6::Zero());
     }
-    // The packed step (packed_pass) covers the plain Cosserat rod with its loads: no
-    // actuators, no cables entering from outside, no Kirchhoff constraint.
-    packed_ = !kActuated && options.packed && !kirchhoff_ && entries_.empty() &&
-              !problem.has_actuators();
+    // The packed step (packed_pass) covers the plain rod with its loads: no actuators, no
+    // cables entering from outside.
+    packed_ = !kActuated && options.packed && entries_.empty() && !problem.has_actuators();
     if (packed_) {
       E_.assign(n_, SE3::identity());
       lambda_.assign(n_, Vector6::Zero());
@@ -341,7 +340,7 @@ class Variational final : public Stepper {
     return legendre_.solve(dt, mu_[j], mu_old, eta_[j]);  // (3.42)
   }
 
-  // --- the packed step (packed_pair.hpp): the plain Cosserat step on pairs of nodes ---------
+  // --- the packed step (packed_pair.hpp): the plain step on pairs of nodes -------------------
   // The same equations as the general loop of step(), in three passes: every E^j (3.26) from the
   // old velocities; every segment (3.38), (3.40); every node's pose (3.39) and balance
   // (3.41)-(3.42). The segments are independent of one another given the E^j, and so are the
@@ -386,7 +385,8 @@ class Variational final : public Stepper {
     const double* K = P_.model().K_diag().data();
     const double* V = P_.model().V_diag().data();
     const double inv_ds = 1.0 / ds_, inv_dt = 1.0 / dt;
-    packed::D2 dissipation = packed::splat(0.0);
+    const packed::D2 zero = packed::splat(0.0);
+    packed::D2 dissipation = zero;
     for (int j = 0; j + 1 < n_; j += 2) {
       const int k = std::min(j + 1, n_ - 2);
       const packed::Pose G = packed::compose(
@@ -405,8 +405,9 @@ class Variational final : public Stepper {
       }
       const packed::V6 xi = inv_ds * x;
       const packed::V6 xi_dot = inv_dt * (xi - packed::load(xi_[j], xi_[k]));
-      const packed::V6 sigma = packed::diag(K, xi - packed::load(xi_star_[j], xi_star_[k])) +
-                               packed::diag(V, xi_dot);  // (3.10)
+      packed::V6 sigma = packed::diag(K, xi - packed::load(xi_star_[j], xi_star_[k])) +
+                         packed::diag(V, xi_dot);  // (3.10)
+      if (kirchhoff_) sigma.v = {zero, zero, zero};  // kirchhoff_stress: nu = nu* holds
       const packed::V6 lambda = packed::dexp_inv_transpose_apply(x, sigma, e, f);
       const packed::D2 power = packed::dot(xi_dot, packed::diag(V, xi_dot));
       dissipation += k != j ? power : packed::D2{power[0], 0.0};
@@ -610,9 +611,10 @@ class Variational final : public Stepper {
       const packed::D2 power =
           packed::dot(mean, packed::diag(V, mean)) - packed::dot(rate, packed::diag(V, rate));
       dissipation += k != j ? power : packed::D2{power[0], 0.0};
+      packed::V6 d_sigma = packed::diag(V, mean - rate);
+      if (kirchhoff_) d_sigma.v = {packed::splat(0.0), packed::splat(0.0), packed::splat(0.0)};
       const packed::V6 lambda = packed::dexp_inv_transpose_apply(
-          x, packed::diag(V, mean - rate), packed::D2{ef_[j].e, ef_[k].e},
-          packed::D2{ef_[j].f, ef_[k].f});
+          x, d_sigma, packed::D2{ef_[j].e, ef_[k].e}, packed::D2{ef_[j].f, ef_[k].f});
       lambda_[j] = packed::lane(lambda, 0);
       lambda_[k] = packed::lane(lambda, 1);
     }

@@ -43,10 +43,10 @@ struct VariationalOptions {
   double tol = 1e-12;      ///< relative tolerance of the Newton solve of (3.42)
   int max_iterations = 20; ///< Newton iterations per node and step
   VariationalStep step = VariationalStep::verlet;
-  /// The plain step on pairs of nodes (SSE2; docs/dynamics.md "The packed step") where the scene
-  /// allows it: a Cosserat rod without actuators or cables entering from outside. It computes
-  /// the general loop's quantities to rounding; false runs the general loop (the tests compare
-  /// the two).
+  /// The plain step on pairs of nodes (SSE2; docs/dynamics.md "The packed variational step")
+  /// where the scene allows it: a rod without actuators or cables entering from outside. It
+  /// computes the general loop's quantities to rounding; false runs the general loop (the tests
+  /// compare the two).
   bool packed = true;
 };
 
