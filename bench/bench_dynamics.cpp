@@ -65,8 +65,9 @@ void step_benchmark(benchmark::State& state, std::string scheme, double fixed_dt
       return make_implicit_midpoint_collocation(problem, {.nodes = n}, initial);
     if (scheme == "bdf-alpha")  // Till's alpha = -0.2
       return make_bdf_alpha(problem, {{n, 1e-10, 50, grid}, kDefaultBdfAlpha}, initial);
-    return scheme == "variational" ? make_variational(problem, {n, 1e-12, 20, rule, packed}, initial)
-                                   : make_implicit_midpoint(problem, {n, 1e-10, 50, grid}, initial);
+    if (scheme == "variational")
+      return make_variational(problem, {n, 1e-12, 20, rule, packed}, initial);
+    return make_implicit_midpoint(problem, {n, 1e-10, 50, grid}, initial);
   };
   // Time steps 10..kWindow of runs from rest, restarted outside the timing: the same window of
   // motion for every N and scheme.
