@@ -209,9 +209,10 @@ inline V6 dexp_inv_transpose_apply(const V6& xi, const V6& lambda, D2 e, D2 f) {
 
 /// solve_legendre (discrete_legendre.hpp) with a diagonal mass matrix M on both lanes: (3.42)
 /// for eta from the momentum mu, eta on entry the velocity that solved it for mu_old. Each lane
-/// stops where the scalar solve stops. Returns 1 when both lanes converged, 0 when one did not
-/// within max_iterations, -1 when an iterate left the small-angle bound (then eta is unchanged
-/// and the caller solves the pair with the scalar kernel).
+/// stops by the scalar solve's two tests. Returns 1 when both lanes converged, 0 when one did
+/// not within max_iterations, -1 when an iterate left the small-angle bound; eta is changed only
+/// when both converged (else the caller solves the lanes with the scalar kernel, which also names
+/// a lane that diverges).
 inline int solve_legendre(const double* M, const double* M_inv, double tol, int max_iterations,
                           double dt, const V6& mu, const V6& mu_old, V6& eta) {
   const V6 eta_old = eta;
@@ -251,7 +252,6 @@ inline int solve_legendre(const double* M, const double* M_inv, double tol, int 
       return 1;
     }
   }
-  eta = select(done, result, x);
   return 0;
 }
 

@@ -445,7 +445,8 @@ class Variational final : public Stepper {
                                                   packed::load(lambda_[j - 1], lambda_[k - 1]));
       packed::V6 bar{{zero, zero, zero},
                      packed::rotate(packed::conjugate(packed::load(g_[j], g_[k]).q), weight_W)};
-      if (applied || drag) bar = bar + packed_node_loads(j, k, t1, dissipated, work);
+      if (applied || drag)
+        bar = bar + packed_node_loads(j, k, t1, applied, drag, dissipated, work);
       const packed::D2 kin = packed::dot(eta_old, packed::diag(M, eta_old));
       kinetic += k != j ? kin : packed::D2{kin[0], 0.0};
       const packed::V6 force = packed::load(lambda_[j], lambda_[k]) - outer + ds_ * bar;
@@ -459,11 +460,12 @@ class Variational final : public Stepper {
         const int s = l == 0 ? j : k;
         if (trapezoidal_damping_) eta_old_[s] = eta_[s];
         mu_[s] = packed::lane(mu, l);
-        if (solved == 1) {
+        // a pair that did not converge, or left the small-angle bound, is solved again lane by
+        // lane (which also names the node that diverged)
+        if (solved == 1)
           eta_[s] = packed::lane(eta, l);
-        } else if (solved == 0 || !legendre_.solve(dt, mu_[s], packed::lane(mu_old, l), eta_[s])) {
+        else if (!legendre_.solve(dt, mu_[s], packed::lane(mu_old, l), eta_[s]))
           return s;  // (3.42) diverged
-        }
       }
     }
     kinetic_old_ += 0.5 * ds_ * (kinetic[0] + kinetic[1]);
@@ -472,19 +474,20 @@ class Variational final : public Stepper {
   }
 
   /// Nodes j and k's distributed load and drag per unit length (node()'s), with their power.
-  packed::V6 packed_node_loads(int j, int k, double t1, double& dissipated, double& work) {
+  packed::V6 packed_node_loads(int j, int k, double t1, bool applied, bool drag,
+                               double& dissipated, double& work) {
     Vector6 bar[2];
     for (int l = 0; l < 2; ++l) {
       const int s = l == 0 ? j : k;
       const Vector6& eta_old = eta_[s];
       bar[l].setZero();
       const bool counted = l == 0 || k != j;
-      if ((P_.applied_load(SO3(), t1).array() != 0.0).any()) {
+      if (applied) {
         const Vector6 a = P_.applied_load(g_[s].rotation(), t1);
         bar[l] += a;
         if (counted) work += ds_ * a.dot(eta_old);
       }
-      if (P_.has_drag()) {
+      if (drag) {
         const Vector6 d = P_.drag_load(eta_old);
         bar[l] += d;
         if (counted) dissipated -= ds_ * d.dot(eta_old);
@@ -637,12 +640,10 @@ class Variational final : public Stepper {
       for (int l = 0; l < (k != j ? 2 : 1); ++l) {
         const int s = l == 0 ? j : k;
         mu_[s] = packed::lane(mu, l);
-        if (solved == 1) {
+        if (solved == 1)
           eta_[s] = packed::lane(eta, l);
-        } else if (solved == 0 ||
-                   !legendre_.solve(dt, mu_[s], packed::lane(mu_predicted, l), eta_[s])) {
+        else if (!legendre_.solve(dt, mu_[s], packed::lane(mu_predicted, l), eta_[s]))
           return s;  // (3.42) diverged
-        }
       }
     }
     const int tip = n_ - 1;
