@@ -5,7 +5,7 @@
 // Variational::packed_pass). Each kernel computes what its scalar namesake computes, with the
 // same series where both lanes are below the scalar kernel's switch to a shorter one, else the
 // longer (the results agree to rounding, tests/dynamics/test_variational_packed.cpp). The
-// caller checks the angle bounds (small_angle::kSmallAngle; log: kLogX2) and falls back to the
+// caller checks the angle bounds (small_angle::kSmallAngle, kLogX2) and falls back to the
 // scalar kernels for a pair where either lane is above them. Private to solvers/dynamics.
 //
 // Why: the step is throughput-bound (splitting it into a segment pass and a node pass without
@@ -24,6 +24,9 @@ using Mask = long __attribute__((vector_size(16)));  ///< lane comparisons: 0 or
 
 inline D2 splat(double a) { return D2{a, a}; }
 inline bool any(Mask m) { return (m[0] | m[1]) != 0; }
+/// v, or its first lane alone where the pair is one node in both lanes (`both` false): what a
+/// pair adds to a sum over nodes.
+inline D2 counted(D2 v, bool both) { return both ? v : D2{v[0], 0.0}; }
 
 struct V3 {
   D2 x, y, z;
@@ -151,35 +154,18 @@ inline void coefficients_ef(D2 t2, D2& e, D2& f) {
 /// small_angle::exp, both lanes' |w|^2 below kSmallAngle^2 (the caller checks `t2`).
 inline Pose exp(const V6& xi, D2 t2) {
   namespace detail = lie::small_angle::detail;
-  static constexpr auto kSinc = [] {  // (-1)^k / (2k+1)!
-    std::array<double, 7> s{};
-    for (int k = 0; k < 7; ++k)
-      s[k] = (k % 2 ? -1.0 : 1.0) / lie::coefficients::detail::factorial(2 * k + 1);
-    return s;
-  }();
-  static constexpr auto kCos = [] {  // (-1)^k / (2k)!
-    std::array<double, 7> s{};
-    for (int k = 0; k < 7; ++k)
-      s[k] = (k % 2 ? -1.0 : 1.0) / lie::coefficients::detail::factorial(2 * k);
-    return s;
-  }();
-  static constexpr auto kSinc4 = detail::head<4>(kSinc);
-  static constexpr auto kCos4 = detail::head<4>(kCos);
   const D2 h2 = 0.25 * t2;
   const bool tiny = !any(!(t2 < lie::small_angle::kTinyAngle * lie::small_angle::kTinyAngle));
-  const D2 sh = tiny ? horner(kSinc4, h2) : horner(kSinc, h2);
-  const D2 ch = tiny ? horner(kCos4, h2) : horner(kCos, h2);
+  const D2 sh = tiny ? horner(detail::kSinc4, h2) : horner(detail::kSinc7, h2);
+  const D2 ch = tiny ? horner(detail::kCos4, h2) : horner(detail::kCos7, h2);
   const V3 wv = cross(xi.w, xi.v);
   const D2 b = 0.5 * sh * sh, c = tiny ? horner(detail::kC3, t2) : horner(detail::kC6, t2);
   const V3 u = (0.5 * sh) * xi.w;
   return {{ch, u.x, u.y, u.z}, xi.v + b * wv + c * cross(xi.w, wv)};
 }
 
-/// small_angle::log's bound: tan^2(theta / 2) below it takes the series.
-inline constexpr double kLogX2 = 0.0158;
-
 /// small_angle::log of both lanes with the coefficients e, f of their angles; `small` is
-/// cleared where a lane is above kLogX2 (then the result is not to be used).
+/// cleared where a lane is above small_angle::kLogX2 (then the result is not to be used).
 inline V6 log(const Pose& g, D2& e, D2& f, bool& small) {
   namespace detail = lie::small_angle::detail;
   const D2 sign = g.q.w < 0.0 ? splat(-1.0) : splat(1.0);
@@ -187,7 +173,7 @@ inline V6 log(const Pose& g, D2& e, D2& f, bool& small) {
   const V3 qv{sign * g.q.x, sign * g.q.y, sign * g.q.z};
   const D2 inv_qw = 1.0 / qw;
   const D2 x2 = dot(qv, qv) * (inv_qw * inv_qw);  // tan^2(theta / 2)
-  small = !any(!(x2 < kLogX2));
+  small = !any(!(x2 < lie::small_angle::kLogX2));
   const D2 atan_x_over_x =
       any(!(x2 < 1e-4)) ? horner(detail::kAtan9, x2) : horner(detail::kAtan5, x2);
   const V3 w = (2.0 * inv_qw * atan_x_over_x) * qv;

@@ -307,16 +307,7 @@ class Variational final : public Stepper {
     } else {
       kinetic_old_ += 0.5 * w * eta_old.dot(legendre_.M.cwiseProduct(eta_old));
     }
-    if (applied) {
-      const Vector6 a = P_.applied_load(R, t1);
-      bar += a;
-      work += w * a.dot(eta_old);
-    }
-    if (drag) {
-      const Vector6 d = P_.drag_load(eta_old);
-      bar += d;
-      dissipated -= w * d.dot(eta_old);
-    }
+    add_node_loads(R, eta_old, w, t1, applied, drag, bar, dissipated, work);
     if (tip) work += inner.dot(eta_old);
     Vector6 force = inner - outer + w * bar;
     for (const auto& e : entries_) {
@@ -379,6 +370,44 @@ class Variational final : public Stepper {
     }
   }
 
+  /// Segments j and k (a pair) moved by the step's E: G = E_j^-1 G_j E_(j+1) (3.38) and its
+  /// twist ds xi = log G with the coefficients e, f of its angle (the scalar log where a lane is
+  /// above the series' bound).
+  packed::V6 packed_segment_twist(int j, int k, packed::Pose& G, packed::D2& e, packed::D2& f) {
+    G = packed::compose(
+        packed::inverse_compose(packed::load(E_[j], E_[k]), packed::load(G_[j], G_[k])),
+        packed::load(E_[j + 1], E_[k + 1]));
+    bool small_angles;
+    const packed::V6 x = packed::log(G, e, f, small_angles);
+    if (small_angles) return x;
+    small::EF k0, k1;
+    const Vector6 x0 = small::log(packed::lane(G, 0), k0);
+    const Vector6 x1 = small::log(packed::lane(G, 1), k1);
+    e = packed::D2{k0.e, k1.e};
+    f = packed::D2{k0.f, k1.f};
+    return packed::load(x0, x1);
+  }
+
+  /// Nodes j and k (a pair): the velocities from (3.42) for the momenta mu (stored), mu_old the
+  /// ones the current velocities solve; a pair that does not converge, or leaves the
+  /// small-angle bound, is solved again lane by lane (which also names the node that diverged).
+  /// Returns -1, or that node.
+  int packed_velocities(int j, int k, double dt, const packed::V6& mu, const packed::V6& mu_old) {
+    packed::V6 eta = packed::load(eta_[j], eta_[k]);
+    const int solved = packed::solve_legendre(legendre_.M.data(), legendre_.M_inv.data(),
+                                              legendre_.tol, legendre_.max_iterations, dt, mu,
+                                              mu_old, eta);
+    for (int l = 0; l < (k != j ? 2 : 1); ++l) {
+      const int s = l == 0 ? j : k;
+      mu_[s] = packed::lane(mu, l);
+      if (solved == 1)
+        eta_[s] = packed::lane(eta, l);
+      else if (!legendre_.solve(dt, mu_[s], packed::lane(mu_old, l), eta_[s]))
+        return s;  // (3.42) diverged
+    }
+    return -1;
+  }
+
   /// Segments j = 0..N-2: G_j = E_j^-1 G_j E_(j+1) (3.38), xi_j, the stress and its wrench
   /// lambda_j = dexp^-T_(ds xi) sigma (3.40), the viscous dissipation.
   void packed_segments(double dt, double& dissipated) {
@@ -389,20 +418,9 @@ class Variational final : public Stepper {
     packed::D2 dissipation = zero;
     for (int j = 0; j + 1 < n_; j += 2) {
       const int k = std::min(j + 1, n_ - 2);
-      const packed::Pose G = packed::compose(
-          packed::inverse_compose(packed::load(E_[j], E_[k]), packed::load(G_[j], G_[k])),
-          packed::load(E_[j + 1], E_[k + 1]));
+      packed::Pose G;
       packed::D2 e, f;
-      bool small_angles;
-      packed::V6 x = packed::log(G, e, f, small_angles);  // ds xi
-      if (!small_angles) {
-        small::EF k0, k1;
-        const Vector6 x0 = small::log(packed::lane(G, 0), k0);
-        const Vector6 x1 = small::log(packed::lane(G, 1), k1);
-        x = packed::load(x0, x1);
-        e = packed::D2{k0.e, k1.e};
-        f = packed::D2{k0.f, k1.f};
-      }
+      const packed::V6 x = packed_segment_twist(j, k, G, e, f);  // ds xi
       const packed::V6 xi = inv_ds * x;
       const packed::V6 xi_dot = inv_dt * (xi - packed::load(xi_[j], xi_[k]));
       packed::V6 sigma = packed::diag(K, xi - packed::load(xi_star_[j], xi_star_[k])) +
@@ -410,7 +428,7 @@ class Variational final : public Stepper {
       if (kirchhoff_) sigma.v = {zero, zero, zero};  // kirchhoff_stress: nu = nu* holds
       const packed::V6 lambda = packed::dexp_inv_transpose_apply(x, sigma, e, f);
       const packed::D2 power = packed::dot(xi_dot, packed::diag(V, xi_dot));
-      dissipation += k != j ? power : packed::D2{power[0], 0.0};
+      dissipation += packed::counted(power, k != j);
       for (int l = 0; l < (k != j ? 2 : 1); ++l) {
         const int s = l == 0 ? j : k;
         G_[s] = packed::lane(G, l);
@@ -447,26 +465,13 @@ class Variational final : public Stepper {
                      packed::rotate(packed::conjugate(packed::load(g_[j], g_[k]).q), weight_W)};
       if (applied || drag)
         bar = bar + packed_node_loads(j, k, t1, applied, drag, dissipated, work);
-      const packed::D2 kin = packed::dot(eta_old, packed::diag(M, eta_old));
-      kinetic += k != j ? kin : packed::D2{kin[0], 0.0};
+      kinetic += packed::counted(packed::dot(eta_old, packed::diag(M, eta_old)), k != j);
       const packed::V6 force = packed::load(lambda_[j], lambda_[k]) - outer + ds_ * bar;
       const packed::V6 mu_old = packed::load(mu_[j], mu_[k]);
       const packed::V6 mu =
           packed::coAd_apply(packed::load(E_[j], E_[k]), mu_old) + (dt / ds_) * force;
-      packed::V6 eta = eta_old;
-      const int solved = packed::solve_legendre(M, legendre_.M_inv.data(), legendre_.tol,
-                                                legendre_.max_iterations, dt, mu, mu_old, eta);
-      for (int l = 0; l < (k != j ? 2 : 1); ++l) {
-        const int s = l == 0 ? j : k;
-        if (trapezoidal_damping_) eta_old_[s] = eta_[s];
-        mu_[s] = packed::lane(mu, l);
-        // a pair that did not converge, or left the small-angle bound, is solved again lane by
-        // lane (which also names the node that diverged)
-        if (solved == 1)
-          eta_[s] = packed::lane(eta, l);
-        else if (!legendre_.solve(dt, mu_[s], packed::lane(mu_old, l), eta_[s]))
-          return s;  // (3.42) diverged
-      }
+      if (trapezoidal_damping_) eta_old_[j] = eta_[j], eta_old_[k] = eta_[k];
+      if (const int s = packed_velocities(j, k, dt, mu, mu_old); s >= 0) return s;
     }
     kinetic_old_ += 0.5 * ds_ * (kinetic[0] + kinetic[1]);
     g_[n_ - 1] = g_[n_ - 2] * G_[n_ - 2];
@@ -476,25 +481,29 @@ class Variational final : public Stepper {
   /// Nodes j and k's distributed load and drag per unit length (node()'s), with their power.
   packed::V6 packed_node_loads(int j, int k, double t1, bool applied, bool drag,
                                double& dissipated, double& work) {
-    Vector6 bar[2];
-    for (int l = 0; l < 2; ++l) {
-      const int s = l == 0 ? j : k;
-      const Vector6& eta_old = eta_[s];
-      bar[l].setZero();
-      const bool counted = l == 0 || k != j;
-      if (applied) {
-        const Vector6 a = P_.applied_load(g_[s].rotation(), t1);
-        bar[l] += a;
-        if (counted) work += ds_ * a.dot(eta_old);
-      }
-      if (drag) {
-        const Vector6 d = P_.drag_load(eta_old);
-        bar[l] += d;
-        if (counted) dissipated -= ds_ * d.dot(eta_old);
-      }
-    }
+    Vector6 bar[2] = {Vector6::Zero(), Vector6::Zero()};
+    add_node_loads(g_[j].rotation(), eta_[j], ds_, t1, applied, drag, bar[0], dissipated, work);
+    if (k == j) return packed::load(bar[0], bar[0]);
+    add_node_loads(g_[k].rotation(), eta_[k], ds_, t1, applied, drag, bar[1], dissipated, work);
     return packed::load(bar[0], bar[1]);
   }
+
+  /// Adds a node's distributed load and drag per unit length (rotation R, velocity eta_old, cell
+  /// w) to `bar`, their power times w to `work` and `dissipated`.
+  void add_node_loads(const SO3& R, const Vector6& eta_old, double w, double t1, bool applied,
+                      bool drag, Vector6& bar, double& dissipated, double& work) const {
+    if (applied) {
+      const Vector6 a = P_.applied_load(R, t1);
+      bar += a;
+      work += w * a.dot(eta_old);
+    }
+    if (drag) {
+      const Vector6 d = P_.drag_load(eta_old);
+      bar += d;
+      dissipated -= w * d.dot(eta_old);
+    }
+  }
+
 
   /// Störmer-Verlet's first half kick (VariationalStep::verlet; docs/dynamics.md "Second order
   /// in time"): the velocity over the first step gets half a step's impulse at the initial
@@ -601,19 +610,14 @@ class Variational final : public Stepper {
     packed::D2 dissipation = packed::splat(0.0);
     for (int j = 0; j + 1 < n_; j += 2) {
       const int k = std::min(j + 1, n_ - 2);
-      const packed::Pose G = packed::compose(
-          packed::inverse_compose(packed::load(E_[j], E_[k]), packed::load(G_[j], G_[k])),
-          packed::load(E_[j + 1], E_[k + 1]));
+      packed::Pose G;
       packed::D2 e_after, f_after;
-      bool small_angles;
-      packed::V6 x_after = packed::log(G, e_after, f_after, small_angles);
-      if (!small_angles)
-        x_after = packed::load(small::log(packed::lane(G, 0)), small::log(packed::lane(G, 1)));
+      const packed::V6 x_after = packed_segment_twist(j, k, G, e_after, f_after);
       const packed::V6 x = packed::load(x_[j], x_[k]), rate = packed::load(rate_[j], rate_[k]);
       const packed::V6 mean = 0.5 * (rate + inv_ds_dt * (x_after - x));
       const packed::D2 power =
           packed::dot(mean, packed::diag(V, mean)) - packed::dot(rate, packed::diag(V, rate));
-      dissipation += k != j ? power : packed::D2{power[0], 0.0};
+      dissipation += packed::counted(power, k != j);
       packed::V6 d_sigma = packed::diag(V, mean - rate);
       if (kirchhoff_) d_sigma.v = {packed::splat(0.0), packed::splat(0.0), packed::splat(0.0)};
       const packed::V6 lambda = packed::dexp_inv_transpose_apply(
@@ -633,18 +637,7 @@ class Variational final : public Stepper {
       }
       const packed::V6 mu_predicted = packed::load(mu_[j], mu_[k]);
       const packed::V6 mu = mu_predicted + (dt / ds_) * force;
-      packed::V6 eta = packed::load(eta_[j], eta_[k]);
-      const int solved = packed::solve_legendre(legendre_.M.data(), legendre_.M_inv.data(),
-                                                legendre_.tol, legendre_.max_iterations, dt, mu,
-                                                mu_predicted, eta);
-      for (int l = 0; l < (k != j ? 2 : 1); ++l) {
-        const int s = l == 0 ? j : k;
-        mu_[s] = packed::lane(mu, l);
-        if (solved == 1)
-          eta_[s] = packed::lane(eta, l);
-        else if (!legendre_.solve(dt, mu_[s], packed::lane(mu_predicted, l), eta_[s]))
-          return s;  // (3.42) diverged
-      }
+      if (const int s = packed_velocities(j, k, dt, mu, mu_predicted); s >= 0) return s;
     }
     const int tip = n_ - 1;
     return correct_node(tip, dt, Vector6::Zero(), lambda_[tip - 1], drag, dissipated) ? -1 : tip;

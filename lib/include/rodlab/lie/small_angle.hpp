@@ -49,7 +49,26 @@ inline constexpr auto kAtan9 = [] {
   return a;
 }();
 inline constexpr auto kAtan5 = head<5>(kAtan9);
+// sin(h)/h = sum (-1)^k h^2k / (2k+1)! and cos(h) = sum (-1)^k h^2k / (2k)!, h = t/2 <= 0.125:
+// seven terms (first dropped: below 1e-20 and 3e-20), four below kTinyAngle (h <= 0.005: 4e-25,
+// 6e-24).
+inline constexpr auto kSinc7 = [] {
+  std::array<double, 7> s{};
+  for (int k = 0; k < 7; ++k)
+    s[k] = (k % 2 ? -1.0 : 1.0) / coefficients::detail::factorial(2 * k + 1);
+  return s;
+}();
+inline constexpr auto kCos7 = [] {
+  std::array<double, 7> s{};
+  for (int k = 0; k < 7; ++k) s[k] = (k % 2 ? -1.0 : 1.0) / coefficients::detail::factorial(2 * k);
+  return s;
+}();
+inline constexpr auto kSinc4 = head<4>(kSinc7);
+inline constexpr auto kCos4 = head<4>(kCos7);
 }  // namespace detail
+
+/// log's bound on tan^2(theta / 2) for the series, tan(kSmallAngle / 2)^2 = 0.01580...
+inline constexpr double kLogX2 = 0.0158;
 
 /// The coefficients e(t) and f(t) of dexp^-1 (coefficients.hpp) from t^2.
 struct EF {
@@ -176,29 +195,15 @@ inline Vector6 dexp_transpose_apply(const Vector6& xi, const Vector6& lambda, co
   const Vector3 w = xi.head<3>(), v = xi.tail<3>();
   const double t2 = w.squaredNorm();
   if (t2 >= kSmallAngle * kSmallAngle) return SE3::exp(xi);
-  // b(t) = sinc(t/2)^2 / 2 (cancellation-free); sinc(h), h = t/2 <= 0.125: the series of
-  // coefficients::cos_sinc, whose first dropped term is below 1e-20 here.
-  // Below kTinyAngle (h <= 0.005) four terms: the first dropped one is 4e-25.
-  static constexpr auto sinc_series = [] {  // (-1)^k / (2k+1)!
-    std::array<double, 7> s{};
-    for (int k = 0; k < 7; ++k) s[k] = (k % 2 ? -1.0 : 1.0) / coefficients::detail::factorial(2 * k + 1);
-    return s;
-  }();
-  static constexpr auto sinc_series4 = detail::head<4>(sinc_series);
+  // b(t) = sinc(t/2)^2 / 2 (cancellation-free); sinc(h) and cos(h) from their series in h^2 (no
+  // square root; detail::kSinc7, kCos7)
   const double h2 = 0.25 * t2;
   const Vector3 wv = w.cross(v);
-  const double sh = t2 < kTinyAngle * kTinyAngle ? coefficients::detail::horner(sinc_series4, h2)
-                                                 : coefficients::detail::horner(sinc_series, h2);
-  // cos(h) from its series in h^2 as well (no square root): 7 terms for h <= 0.125 (first
-  // dropped term 3e-20), 4 for h <= 0.005 (6e-24).
-  static constexpr auto cos_series = [] {  // (-1)^k / (2k)!
-    std::array<double, 7> s{};
-    for (int k = 0; k < 7; ++k) s[k] = (k % 2 ? -1.0 : 1.0) / coefficients::detail::factorial(2 * k);
-    return s;
-  }();
-  static constexpr auto cos_series4 = detail::head<4>(cos_series);
-  const double ch = t2 < kTinyAngle * kTinyAngle ? coefficients::detail::horner(cos_series4, h2)
-                                                 : coefficients::detail::horner(cos_series, h2);
+  const bool tiny = t2 < kTinyAngle * kTinyAngle;
+  const double sh = tiny ? coefficients::detail::horner(detail::kSinc4, h2)
+                         : coefficients::detail::horner(detail::kSinc7, h2);
+  const double ch = tiny ? coefficients::detail::horner(detail::kCos4, h2)
+                         : coefficients::detail::horner(detail::kCos7, h2);
   const double b = 0.5 * sh * sh, cc = c(t2);
   return SE3(SO3::exp_from_half_angle(ch, sh, w), v + b * wv + cc * w.cross(wv));
 }
@@ -212,9 +217,7 @@ inline Vector6 dexp_transpose_apply(const Vector6& xi, const Vector6& lambda, co
   const double n2 = qv.squaredNorm();
   const double inv_qw = 1.0 / qw;                // the one division
   const double x2 = n2 * (inv_qw * inv_qw);  // tan^2(theta / 2)
-  // tan(kSmallAngle / 2)^2 = 0.01580...
-  constexpr double kX2 = 0.0158;
-  if (!(x2 < kX2)) {
+  if (!(x2 < kLogX2)) {
     const Vector6 xi = g.log();
     k = ef(xi.head<3>().squaredNorm());
     return xi;
