@@ -349,3 +349,22 @@ BOOST_AUTO_TEST_CASE(two_mpi_ranks_give_the_one_process_table) {
                                                    "mpi/convergence_orders.csv",
                                                    "mpi/study.json"}));
 }
+
+// MPI lives in a module loaded only under an MPI launcher (studies/mpi_module.hpp): a run
+// outside one, a study included, maps none of its libraries (their start-up cost, about 3 ms a
+// process, docs/performance.md "Process start-up"). The dynamic loader's own log (LD_DEBUG) says
+// which objects a process opened.
+BOOST_AUTO_TEST_CASE(runs_outside_a_launcher_load_no_mpi_library) {
+  Sandbox box;
+  for (const std::string& args :
+       {std::string("--version"),
+        "study convergence " + quote(kScene) + " --schemes rkmk-rk4 --nodes 6,11 --out s"}) {
+    const Run r = box.run(args, "LD_DEBUG=files ");
+    BOOST_TEST_CONTEXT("rodlab " << args << "\n" << r.err.substr(0, 2000)) {
+      BOOST_TEST(r.status == 0);
+      BOOST_TEST(contains(r.err, "libyaml-cpp"), "the loader's log is there");
+      BOOST_TEST(!contains(r.err, "libmpi"));
+      BOOST_TEST(!contains(r.err, "librodlab_mpi"));
+    }
+  }
+}

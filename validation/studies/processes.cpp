@@ -1,13 +1,15 @@
 #include "studies/processes.hpp"
 
+#include <dlfcn.h>
+
 #include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <system_error>
+#include <vector>
 
-#ifdef RODLAB_HAVE_MPI
-#include <mpi.h>
-#endif
-
+#include "studies/mpi_module.hpp"
 
 namespace rodlab::validation::study {
 
@@ -22,42 +24,68 @@ int launcher_world_size() {
 }
 
 namespace {
+
 bool launched_by_mpi() {
   return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_SIZE") ||
          std::getenv("PMIX_RANK");
 }
+
+#ifdef RODLAB_MPI_MODULE
+/// The MPI module (mpi_module.hpp): librodlab_mpi.so in the lib/ directory beside the running
+/// program's bin/ (the build tree's layout), else where this build put it. RTLD_GLOBAL: OpenMPI
+/// opens its own components, which look up libmpi's symbols in the global scope.
+const RodlabMpiApi* load_mpi_module(std::string& tried) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path program = fs::read_symlink("/proc/self/exe", error);
+  const fs::path built(RODLAB_MPI_MODULE);
+  std::vector<fs::path> paths;
+  if (!error) paths.push_back(program.parent_path().parent_path() / "lib" / built.filename());
+  if (paths.empty() || paths.front() != built) paths.push_back(built);
+  for (const fs::path& path : paths) {
+    if (void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL))
+      if (auto* api = reinterpret_cast<const RodlabMpiApi* (*)()>(
+              ::dlsym(handle, kRodlabMpiApiSymbol)))
+        return api();
+    const char* why = ::dlerror();
+    tried += (tried.empty() ? "" : "; ") + (why ? std::string(why) : path.string());
+  }
+  return nullptr;
+}
+#endif
+
 }  // namespace
 
 Processes::Processes() {
   if (!launched_by_mpi()) return;
-#ifdef RODLAB_HAVE_MPI
-  int provided = 0;
-  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-  MPI_Comm_size(MPI_COMM_WORLD, &size_);
-  mpi_ = true;
-#else
-  if (launcher_world_size() > 1)
-    throw std::invalid_argument(
-        "launched by mpirun with " + std::to_string(launcher_world_size()) +
-        " ranks, but this rodlab was built without MPI: every rank would run the whole study. "
-        "Run it without mpirun (use --jobs N for the local cores), or install libopenmpi-dev "
-        "and openmpi-bin and rebuild (scripts/bootstrap.sh)");
+  std::string tried;
+#ifdef RODLAB_MPI_MODULE
+  mpi_api_ = load_mpi_module(tried);
 #endif
+  if (!mpi_api_) {
+    if (launcher_world_size() <= 1) return;
+    throw std::invalid_argument(
+        "launched by mpirun with " + std::to_string(launcher_world_size()) + " ranks, but " +
+        (tried.empty() ? std::string("this rodlab was built without MPI")
+                       : "its MPI module could not be loaded (" + tried + ")") +
+        ": every rank would run the whole study. Run it without mpirun (use --jobs N for the "
+        "local cores), or install libopenmpi-dev and openmpi-bin and rebuild "
+        "(scripts/bootstrap.sh)");
+  }
+  if (const int e = mpi_api_->init(&rank_, &size_); e != 0)
+    throw std::runtime_error("MPI_Init_thread failed with error code " + std::to_string(e));
+  mpi_ = true;
 }
 
 Processes::~Processes() {
-#ifdef RODLAB_HAVE_MPI
-  if (mpi_) MPI_Finalize();
-#endif
+  if (mpi_) mpi_api_->finalize();
 }
 
 std::vector<std::string> Processes::gather(const std::string& mine) const {
   if (!mpi_) return {mine};
-#ifdef RODLAB_HAVE_MPI
   const int length = static_cast<int>(mine.size());
   std::vector<int> lengths(root() ? size_ : 0);
-  MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  mpi_api_->gather_lengths(length, lengths.data());
   std::vector<int> offsets(lengths.size(), 0);
   int total = 0;
   for (std::size_t r = 0; r < lengths.size(); ++r) {
@@ -65,16 +93,12 @@ std::vector<std::string> Processes::gather(const std::string& mine) const {
     total += lengths[r];
   }
   std::string all(static_cast<std::size_t>(total), '\0');
-  MPI_Gatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR,
-              0, MPI_COMM_WORLD);
+  mpi_api_->gather_bytes(mine.data(), length, all.data(), lengths.data(), offsets.data());
   std::vector<std::string> out;
   for (std::size_t r = 0; r < lengths.size(); ++r)
     out.push_back(all.substr(static_cast<std::size_t>(offsets[r]),
                              static_cast<std::size_t>(lengths[r])));
   return out;
-#else
-  return {mine};
-#endif
 }
 
 }  // namespace rodlab::validation::study

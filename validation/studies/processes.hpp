@@ -3,10 +3,13 @@
 // ...`). MPI is initialised only by `rodlab study`, only after its input has been checked, and
 // only when the program was launched by an MPI launcher (OMPI_COMM_WORLD_SIZE, PMI_SIZE or
 // PMIX_RANK in the environment), so every other command, and a plain `rodlab study`, never
-// touches MPI. Built without MPI, a launch by mpirun with more than one rank is refused (exit
+// touches MPI: the MPI calls live in a module loaded then (mpi_module.hpp), and no other run maps
+// the MPI libraries. Built without MPI (or with its module missing), a launch by mpirun with more than one rank is refused (exit
 // status 2) instead of running the whole study K times.
 #include <string>
 #include <vector>
+
+struct RodlabMpiApi;
 
 namespace rodlab::validation::study {
 
@@ -31,6 +34,7 @@ class Processes {
   int rank_ = 0;
   int size_ = 1;
   bool mpi_ = false;
+  const RodlabMpiApi* mpi_api_ = nullptr;  ///< the MPI module's calls (mpi_module.hpp)
 };
 
 /// The number of ranks the launcher announced in the environment (1 when not launched by one).
