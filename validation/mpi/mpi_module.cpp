@@ -1,5 +1,6 @@
-// librodlab_mpi.so (validation/CMakeLists.txt): the MPI calls of the study processes (studies/mpi_module.hpp), the only code
-// compiled against mpi.h. Loaded by studies/processes.cpp under an MPI launcher only.
+// librodlab_mpi.so (validation/CMakeLists.txt): the MPI calls of the study processes
+// (studies/mpi_module.hpp), the only code compiled against mpi.h. Loaded by
+// studies/processes.cpp under an MPI launcher only.
 #include <mpi.h>
 
 #include "studies/mpi_module.hpp"

@@ -4,8 +4,8 @@
 // only when the program was launched by an MPI launcher (OMPI_COMM_WORLD_SIZE, PMI_SIZE or
 // PMIX_RANK in the environment), so every other command, and a plain `rodlab study`, never
 // touches MPI: the MPI calls live in a module loaded then (mpi_module.hpp), and no other run maps
-// the MPI libraries. Built without MPI (or with its module missing), a launch by mpirun with more than one rank is refused (exit
-// status 2) instead of running the whole study K times.
+// the MPI libraries. Built without MPI (or with its module missing), a launch by mpirun with
+// more than one rank is refused (exit status 2) instead of running the whole study K times.
 #include <string>
 #include <vector>
 
