@@ -7,9 +7,9 @@
 #include <span>
 #include <stdexcept>
 
-#include <ceres/ceres.h>
-
+#include "ceres_module.hpp"
 #include "rodlab/check.hpp"
+#include "rodlab/module.hpp"
 #include "rodlab/solvers/common/box_qp.hpp"
 #include "rodlab/solvers/statics/chebyshev_tracker.hpp"
 #include "rodlab/solvers/statics/workspace.hpp"
@@ -207,85 +207,61 @@ Outcome gauss_newton(const Problem& P, const InverseStaticsOptions& o, VectorXd&
   return out;
 }
 
-/// The forward model as Ceres sees it: residuals [(p(u) - p*) / L; sqrt(w) u_k / s_k] and their
-/// Jacobian [dp/du / L; sqrt(w) diag(1 / s_k)].
-class CeresTipCost final : public ceres::CostFunction {
- public:
-  explicit CeresTipCost(const Problem& P) : P_(P), sqrt_w_(std::sqrt(P.weight)) {
-    set_num_residuals(3 + static_cast<int>(P.scale.size()));
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(P.scale.size()));
-  }
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const double* u = parameters[0];
-    const int m = static_cast<int>(P_.scale.size());
-    if (!P_.model.solve_at(u)) return false;
-    Eigen::Map<Vector3> tip_rows(residuals);
-    tip_rows = (P_.model.tip() - P_.target) / P_.length;
-    for (int k = 0; k < m; ++k) residuals[3 + k] = sqrt_w_ * u[k] / P_.scale[k];
-    if (!jacobians || !jacobians[0]) return true;
-    if (!P_.model.jacobian(dpdu_)) return false;
-    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(jacobians[0], 3 + m, m);
-    J.topRows<3>() = dpdu_ / P_.length;
-    J.bottomRows(m) = (sqrt_w_ * P_.scale.cwiseInverse()).asDiagonal();
-    return true;
-  }
+/// Method ceres: the forward model as residuals [(p(u) - p*) / L; sqrt(w) u_k / s_k] with their
+/// Jacobian [dp/du / L; sqrt(w) diag(1 / s_k)], and the stop once the tip is within tolerance
+/// after a small accepted step, for the Ceres module (ceres_module.hpp).
+struct CeresTip {
+  const Problem& P;
+  double sqrt_w, tolerance, step_bound;
+  Matrix3X dpdu;
 
- private:
-  const Problem& P_;
-  double sqrt_w_;
-  mutable Matrix3X dpdu_;
-};
-
-/// Ceres stops (successfully) once the tip is within tolerance and the last step was small.
-class CeresReachStop final : public ceres::IterationCallback {
- public:
-  CeresReachStop(const Problem& P, double tolerance, double step_bound)
-      : P_(P), tolerance_(tolerance), step_bound_(step_bound) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
-    if (summary.iteration == 0 || !summary.step_is_successful) return ceres::SOLVER_CONTINUE;
-    // The model holds the accepted point: Ceres evaluated its Jacobian there last.
-    const bool near = (P_.model.tip() - P_.target).norm() <= tolerance_;
-    return near && summary.step_norm <= step_bound_ ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
-                                                    : ceres::SOLVER_CONTINUE;
+  static int evaluate(void* self, const double* u, double* r, double* jacobian) {
+    auto& c = *static_cast<CeresTip*>(self);
+    const Problem& P = c.P;
+    const int m = static_cast<int>(P.scale.size());
+    if (!P.model.solve_at(u)) return 0;
+    Eigen::Map<Vector3> tip_rows(r);
+    tip_rows = (P.model.tip() - P.target) / P.length;
+    for (int k = 0; k < m; ++k) r[3 + k] = c.sqrt_w * u[k] / P.scale[k];
+    if (!jacobian) return 1;
+    if (!P.model.jacobian(c.dpdu)) return 0;
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
+        jacobian, 3 + m, m);
+    J.topRows<3>() = c.dpdu / P.length;
+    J.bottomRows(m) = (c.sqrt_w * P.scale.cwiseInverse()).asDiagonal();
+    return 1;
   }
-
- private:
-  const Problem& P_;
-  double tolerance_, step_bound_;
+  // The model holds the accepted point: Ceres evaluated its Jacobian there last.
+  static int accepted_step(void* self, double step_norm) {
+    const auto& c = *static_cast<const CeresTip*>(self);
+    return (c.P.model.tip() - c.P.target).norm() <= c.tolerance && step_norm <= c.step_bound;
+  }
 };
 
 /// The same problem through Ceres (method ceres; for comparison, inverse_statics.hpp).
 Outcome ceres_solve(const Problem& P, const InverseStaticsOptions& o, VectorXd& u) {
+  std::string why;
+  const auto* ceres = load_module_api<RodlabCeresApi>(RODLAB_CERES_MODULE,
+                                                      kRodlabCeresApiSymbol, why);
+  if (!ceres)
+    throw std::runtime_error(
+        rodlab::format("inverse statics: method ceres needs the Ceres module ({})", why));
   const int m = static_cast<int>(u.size());
-  CeresTipCost cost(P);
-  ceres::Problem::Options problem_options;
-  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
-  problem.AddResidualBlock(&cost, nullptr, u.data());
-  for (int k = 0; k < m; ++k) {
-    problem.SetParameterLowerBound(u.data(), k, P.limits[k].first);
-    problem.SetParameterUpperBound(u.data(), k, P.limits[k].second);
-  }
-  CeresReachStop stop(P, o.tolerance, o.step_tolerance * P.scale.norm());
-  ceres::Solver::Options so;
-  so.minimizer_type = ceres::TRUST_REGION;
-  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.initial_trust_region_radius = kCeresInitialRadius;
-  so.max_num_iterations = o.max_updates;
-  so.function_tolerance = 1e-12;
-  so.gradient_tolerance = 1e-14;
-  so.parameter_tolerance = 1e-10;
-  so.num_threads = 1;
-  so.logging_type = ceres::SILENT;
-  so.callbacks.push_back(&stop);
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
+  CeresTip tip{P, std::sqrt(P.weight), o.tolerance, o.step_tolerance * P.scale.norm(), {}};
+  VectorXd lower(m), upper(m);
+  for (int k = 0; k < m; ++k) lower[k] = P.limits[k].first, upper[k] = P.limits[k].second;
+  RodlabLeastSquares problem{3 + m, m, u.data(), lower.data(), upper.data(),
+                             &CeresTip::evaluate, &CeresTip::accepted_step, &tip,
+                             kCeresInitialRadius, o.max_updates,
+                             /*function_tolerance=*/1e-12, /*gradient_tolerance=*/1e-14,
+                             /*parameter_tolerance=*/1e-10};
+  RodlabLeastSquaresSummary summary{};
+  ceres->solve(&problem, &summary);
   Outcome out;
   const bool solved = P.model.solve_at(u.data());  // Ceres may end on a rejected trial point
-  out.converged = solved && summary.IsSolutionUsable() && summary.termination_type != ceres::NO_CONVERGENCE;
+  out.converged = solved && summary.usable && !summary.no_convergence;
   if (!out.converged)
-    out.failure = solved ? "Ceres: " + summary.message
+    out.failure = solved ? std::string("Ceres: ") + summary.message
                          : "the statics did not converge at the returned inputs: " + P.model.failure;
   return out;
 }

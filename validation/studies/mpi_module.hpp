@@ -28,5 +28,5 @@ struct RodlabMpiApi {
 const RodlabMpiApi* rodlab_mpi_api();
 }
 
-/// Its name, for dlsym.
+/// Its name, for rodlab::load_module (rodlab/module.hpp).
 inline constexpr const char* kRodlabMpiApiSymbol = "rodlab_mpi_api";

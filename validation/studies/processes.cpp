@@ -1,14 +1,10 @@
 #include "studies/processes.hpp"
 
-#include <dlfcn.h>
-
 #include <cstdlib>
-#include <filesystem>
 #include <stdexcept>
 #include <string>
-#include <system_error>
-#include <vector>
 
+#include "rodlab/module.hpp"
 #include "studies/mpi_module.hpp"
 
 namespace rodlab::validation::study {
@@ -30,37 +26,13 @@ bool launched_by_mpi() {
          std::getenv("PMIX_RANK");
 }
 
-#ifdef RODLAB_MPI_MODULE
-/// The MPI module (mpi_module.hpp): librodlab_mpi.so in the lib/ directory beside the running
-/// program's bin/ (the build tree's layout), else where this build put it. RTLD_GLOBAL: OpenMPI
-/// opens its own components, which look up libmpi's symbols in the global scope.
-const RodlabMpiApi* load_mpi_module(std::string& tried) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  const fs::path program = fs::read_symlink("/proc/self/exe", error);
-  const fs::path built(RODLAB_MPI_MODULE);
-  std::vector<fs::path> paths;
-  if (!error) paths.push_back(program.parent_path().parent_path() / "lib" / built.filename());
-  if (paths.empty() || paths.front() != built) paths.push_back(built);
-  for (const fs::path& path : paths) {
-    if (void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL))
-      if (auto* api = reinterpret_cast<const RodlabMpiApi* (*)()>(
-              ::dlsym(handle, kRodlabMpiApiSymbol)))
-        return api();
-    const char* why = ::dlerror();
-    tried += (tried.empty() ? "" : "; ") + (why ? std::string(why) : path.string());
-  }
-  return nullptr;
-}
-#endif
-
 }  // namespace
 
 Processes::Processes() {
   if (!launched_by_mpi()) return;
   std::string tried;
-#ifdef RODLAB_MPI_MODULE
-  mpi_api_ = load_mpi_module(tried);
+#ifdef RODLAB_MPI_MODULE  // the module's path in the build tree (validation/CMakeLists.txt)
+  mpi_api_ = load_module_api<RodlabMpiApi>(RODLAB_MPI_MODULE, kRodlabMpiApiSymbol, tried);
 #endif
   if (!mpi_api_) {
     if (launcher_world_size() <= 1) return;
