@@ -3,7 +3,8 @@
 // module (solvers/ceres/ceres_module.cpp, built as the shared module librodlab_ceres.so). The
 // module is loaded (rodlab/module.hpp) only by a solve with that method, so no other run maps
 // Ceres' dependencies (glog, gflags, SuiteSparse's CHOLMOD and SPQR, LAPACK, BLAS: 17 shared
-// objects, about 1.5 ms of every process start, docs/performance.md "Process start-up").
+// objects; with the MPI module's, 4.2 of the 8.3 ms `rodlab --version` took, docs/performance.md
+// "Process start-up").
 //
 // C linkage and plain C types: the table is all the two sides share, and the module is the only
 // code compiled against Ceres' headers.

@@ -351,7 +351,7 @@ BOOST_AUTO_TEST_CASE(two_mpi_ranks_give_the_one_process_table) {
 }
 
 // MPI lives in a module loaded only under an MPI launcher (studies/mpi_module.hpp): a run
-// outside one, a study included, maps none of its libraries (their start-up cost, about 3 ms a
+// outside one, a study included, maps none of its libraries (their start-up cost, about 2 ms a
 // process, docs/performance.md "Process start-up"). The dynamic loader's own log (LD_DEBUG) says
 // which objects a process opened.
 BOOST_AUTO_TEST_CASE(runs_outside_a_launcher_load_no_mpi_library) {

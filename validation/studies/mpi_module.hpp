@@ -2,8 +2,8 @@
 // The interface between the study processes (processes.cpp) and the MPI module
 // (mpi_module.cpp, built as the shared module librodlab_mpi.so when CMake finds MPI). The
 // module is loaded with dlopen only by `rodlab study` under an MPI launcher, so no other run
-// maps the MPI libraries (OpenMPI and its dependencies: a dozen shared objects, about 3 ms of
-// every process start on the machine of docs/performance.md "Process start-up").
+// maps the MPI libraries (OpenMPI and its dependencies: a dozen shared objects, about 2 ms of
+// every process start; docs/performance.md "Process start-up").
 //
 // C linkage and plain C types, so that the table is all the two sides share: the module is the
 // only code compiled against mpi.h.
