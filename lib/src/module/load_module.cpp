@@ -12,7 +12,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Where to look for a module named `name`, without repeats.
+/// Where to look for the module the build put at `built`, in order and without repeats.
 std::vector<fs::path> candidates(const fs::path& built) {
   std::vector<fs::path> paths;
   auto add = [&](const fs::path& p) {
