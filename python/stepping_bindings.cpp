@@ -23,7 +23,8 @@ class Simulation {
     options_ = cli::resolve_dynamic_solver(o, scene_, cli::scene_dynamics_scheme(scene_), "dynamic")
                    .solve;
     problem_ = std::make_unique<solvers::dynamics::DynamicProblem>(
-        solvers::dynamics::DynamicProblem::from_scene(scene_));
+        solvers::dynamics::problem_on_grid(
+            solvers::dynamics::DynamicProblem::from_scene(scene_), options_));
     const auto scene_dt = scene_.dynamics ? scene_.dynamics->dt : std::nullopt;
     if (!dt.is_none())
       dt_ = dt.cast<double>();

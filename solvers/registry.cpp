@@ -58,6 +58,7 @@ std::unique_ptr<Stepper> variational(const DynamicProblem& problem, const Dynami
   options.nodes = o.nodes;               // tightened further by a smaller run tolerance
   options.tol = std::min(o.tol, options.tol);
   options.step = o.variational_step;
+  options.corrected_grid = o.grid == dynamics::ShootingGrid::corrected;
   return dynamics::make_variational(problem, options, initial);
 }
 

@@ -9,6 +9,7 @@
 #include "rodlab/check.hpp"
 #include "rodlab/io/result_writer.hpp"
 #include "rodlab/io/text_format.hpp"
+#include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 
 #include "errors.hpp"
@@ -27,9 +28,10 @@ const std::string kAlphaHelp =
     "bdf-alpha: alpha in [-0.5, 0] (0 BDF2, -0.5 trapezoidal); default: solver.alpha, else " +
     io::format_number(kDefaults.alpha);
 const std::string kGridHelp =
-    "implicit-midpoint, bdf-alpha: the shooting march's spatial grid, euler (explicit Euler RKMK "
-    "on the nodes, the thesis) or staggered (the grid of variational and ida, second order); "
-    "default: solver.grid, else " +
+    "the spatial grid: for implicit-midpoint and bdf-alpha euler (explicit Euler RKMK on the "
+    "nodes, the thesis) or staggered (the grid of variational and ida, second order); for "
+    "variational staggered or corrected (the staggered grid with its bending and tip "
+    "corrections, about 15x smaller errors on bending modes); default: solver.grid, else " +
     std::string(solvers::dynamics::shooting_grid_name(kDefaults.grid));
 const std::string kVariationalStepHelp =
     "variational: its time rule, verlet (Stormer-Verlet, second order) or symplectic-euler (the "
@@ -42,7 +44,7 @@ const std::string kVariationalStepHelp =
 const OptionSpec kRtolOption{"--rtol", "X", kRtolHelp};
 const OptionSpec kAtolOption{"--atol", "X", kAtolHelp};
 const OptionSpec kAlphaOption{"--alpha", "X", kAlphaHelp};
-const OptionSpec kGridOption{"--grid", "euler|staggered", kGridHelp};
+const OptionSpec kGridOption{"--grid", "euler|staggered|corrected", kGridHelp};
 const OptionSpec kVariationalStepOption{"--variational-step", "verlet|symplectic-euler",
                                         kVariationalStepHelp};
 
@@ -166,7 +168,8 @@ SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::stri
     if (solvers::dynamics::shooting_grid_from_name(*grid))
       o.grid = *grid;
     else
-      reader.problem("--grid: must be euler or staggered (got " + *grid + ")");
+      reader.problem("--grid: must be euler or staggered, or corrected for variational (got " +
+                     *grid + ")");
   }
   if (const auto step = reader.text(kVariationalStepOption.name)) {
     if (solvers::dynamics::variational_step_from_name(*step))
@@ -293,7 +296,9 @@ DynamicRun resolve_dynamic_run(const SolveOptions& options, const scene::Scene& 
 
 void resolve_time_step(DynamicRun& run, const scene::Scene& scene) {
   if (!run.automatic_dt) return;
-  const auto problem = solvers::dynamics::DynamicProblem::from_scene(scene);
+  // on the run's grid: the corrected grid's softer shear allows a longer step
+  const auto problem = solvers::dynamics::problem_on_grid(
+      solvers::dynamics::DynamicProblem::from_scene(scene), run.solve);
   run.solve.dt = solvers::dynamics::auto_time_step(problem, run.solve.scheme, run.solve.nodes);
   run.automatic_dt = false;
 }

@@ -11,6 +11,7 @@
 #include "rodlab/check.hpp"
 #include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/common/deadline.hpp"
+#include "rodlab/solvers/dynamics/corrected_grid.hpp"
 #include "rodlab/solvers/dynamics/shooting/step_bound.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 #include "rodlab/solvers/registry.hpp"
@@ -94,7 +95,7 @@ void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options
   options.alpha = scene.solver.alpha.value_or(options.alpha);
   if (scene.solver.grid) {
     const auto grid = shooting_grid_from_name(*scene.solver.grid);
-    if (!grid) throw std::invalid_argument("solver.grid: must be euler or staggered");
+    if (!grid) throw std::invalid_argument("solver.grid: must be euler, staggered or corrected");
     options.grid = *grid;
   }
   if (scene.solver.variational_step) {
@@ -104,6 +105,12 @@ void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options
     options.variational_step = *step;
   }
   if (scene.dynamics) options.initial = scene.dynamics->initial;
+}
+
+DynamicProblem problem_on_grid(DynamicProblem problem, const DynamicSolveOptions& options) {
+  if (options.grid != ShootingGrid::corrected) return problem;
+  require_corrected_grid(problem, options.scheme);
+  return corrected_grid_problem(problem, options.nodes);
 }
 
 std::string step_problem(const DynamicProblem& problem, const DynamicSolveOptions& options,
@@ -124,7 +131,7 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   if (!(options.max_wall_time >= 0.0) || !std::isfinite(options.max_wall_time))
     throw std::invalid_argument("max_wall_time must be >= 0");
   const SchemeInfo& scheme = scheme_for(options.scheme, Problem::dynamics);
-  const DynamicProblem problem = DynamicProblem::from_scene(scene);
+  const DynamicProblem problem = problem_on_grid(DynamicProblem::from_scene(scene), options);
 
   result::DynamicResult out;
   out.scene = scene.name;

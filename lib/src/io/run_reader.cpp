@@ -56,8 +56,9 @@ scene::Solver read_solver(Checker& c, const Field& f) {
   if (auto it = c.integer(c.child(f, "max_iterations"), 1)) s.max_iterations = *it;
   // bdf-alpha: 0 is BDF2, -0.5 the trapezoidal rule (Till, Aloi & Rucker 2019)
   s.alpha = c.number(c.child(f, "alpha"), Range{-0.5, 0.0, false, false});
-  // implicit-midpoint, bdf-alpha: the spatial grid of the shooting march (docs/dynamics.md)
-  static constexpr std::string_view kGrids[] = {"euler", "staggered"};
+  // the spatial grid: of the shooting march (implicit-midpoint, bdf-alpha: euler, staggered) and
+  // of variational (staggered, corrected); docs/dynamics.md
+  static constexpr std::string_view kGrids[] = {"euler", "staggered", "corrected"};
   if (auto k = c.choice(c.child(f, "grid"), kGrids)) s.grid = std::string(kGrids[*k]);
   // variational: its time rule (docs/dynamics.md "Second order in time")
   static constexpr std::string_view kSteps[] = {"verlet", "symplectic-euler"};

@@ -99,4 +99,20 @@ lie::SE3 RodModel::rest_pose(double s) const {
   return g;
 }
 
+RodModel RodModel::with_residual_bending_flexibility(double ds) const {
+  RODLAB_THROW_UNLESS(ds > 0.0 && std::isfinite(ds), "grid spacing must be > 0 (got {:g})", ds);
+  RodModel m = *this;
+  const double c = ds * ds / 12.0;
+  // in series: the shear's compliance plus the residual bending flexibility c / K_b
+  auto series = [c](double shear, double bending) {
+    return shear > 0.0 && bending > 0.0 ? 1.0 / (1.0 / shear + c / bending) : shear;
+  };
+  m.K_[3] = series(K_[3], K_[1]);  // shear x, bending about y
+  m.K_[4] = series(K_[4], K_[0]);  // shear y, bending about x
+  m.V_[3] = series(V_[3], V_[1]);
+  m.V_[4] = series(V_[4], V_[0]);
+  m.K_inv_ = m.K_.cwiseInverse();
+  return m;
+}
+
 }  // namespace rodlab::rod

@@ -1,5 +1,6 @@
 #include "rodlab/solvers/dynamics/shooting/shooting_stepper.hpp"
 
+#include "rodlab/solvers/dynamics/corrected_grid.hpp"
 #include "rodlab/solvers/dynamics/shooting/bdf_alpha.hpp"
 #include "rodlab/solvers/dynamics/shooting/implicit_midpoint.hpp"
 
@@ -359,18 +360,25 @@ std::unique_ptr<Stepper> make_shooting_stepper(const DynamicProblem& problem,
                                                const RestState& initial,
                                                std::unique_ptr<TimeRule> rule) {
   if (!rule) throw std::invalid_argument("shooting stepper: no time rule");
+  if (options.grid == ShootingGrid::corrected)
+    require_corrected_grid(problem, "implicit-midpoint and bdf-alpha");
   if (options.grid == ShootingGrid::staggered)
     return make_staggered_shooting_stepper(problem, options, initial, std::move(rule));
   return std::make_unique<ShootingStepper>(problem, options, initial, std::move(rule));
 }
 
 std::string_view shooting_grid_name(ShootingGrid grid) {
-  return grid == ShootingGrid::staggered ? "staggered" : "euler";
+  switch (grid) {
+    case ShootingGrid::euler: return "euler";
+    case ShootingGrid::staggered: return "staggered";
+    case ShootingGrid::corrected: return "corrected";
+  }
+  return "?";
 }
 
 std::optional<ShootingGrid> shooting_grid_from_name(std::string_view name) {
-  if (name == "euler") return ShootingGrid::euler;
-  if (name == "staggered") return ShootingGrid::staggered;
+  for (const auto grid : {ShootingGrid::euler, ShootingGrid::staggered, ShootingGrid::corrected})
+    if (name == shooting_grid_name(grid)) return grid;
   return std::nullopt;
 }
 

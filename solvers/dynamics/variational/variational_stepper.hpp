@@ -17,6 +17,8 @@
 #include "packed_pair.hpp"
 #include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
+#include "rodlab/rod/energies.hpp"
+#include "rodlab/solvers/dynamics/corrected_grid.hpp"
 #include "rodlab/solvers/dynamics/variational/variational.hpp"
 #include "../tangent_state.hpp"
 #include "variational_actuators.hpp"
@@ -84,6 +86,15 @@ class Variational final : public Stepper {
     }
     const Vector6 M = problem.model().M_diag();
     legendre_ = {M, M.cwiseInverse(), options.tol, options.max_iterations};
+    if (options.corrected_grid) {
+      if (kActuated || kirchhoff_ || problem.has_actuators())
+        require_corrected_grid(problem, "variational");
+      if (!clamped_) {
+        tip_cell_ = TipHalfCell::make(problem.model(), n_);
+        tip_rest_rotation_ =
+            rod::reference_pose(problem.model(), problem.base(), problem.length()).rotation();
+      }
+    }
     entries_ = problem.entry_nodes(n_);
     if (kirchhoff_) constraint_.emplace(n_, ds_, nu_star_, legendre_, options.max_iterations);
     if constexpr (kActuated) {
@@ -246,9 +257,11 @@ class Variational final : public Stepper {
       G_[j] = SE3::exp(ds_ * xi_[j]);
       g_[j + 1] = g_[j] * G_[j];
     }
-    for (int j = 1; j < n_; ++j)
-      mu_[j] = lie::se3::dexp_inv_transpose_apply(dt_last_ * eta_[j],
-                                                  legendre_.M.cwiseProduct(eta_[j]));  // (3.42)
+    for (int j = 1; j < n_; ++j) {
+      const Vector6 M_eta = j == n_ - 1 && tip_cell_ ? Vector6(tip_cell_->M * eta_[j])
+                                                     : Vector6(legendre_.M.cwiseProduct(eta_[j]));
+      mu_[j] = lie::se3::dexp_inv_transpose_apply(dt_last_ * eta_[j], M_eta);  // (3.42)
+    }
   }
 
   Energy energy() const override {
@@ -258,6 +271,13 @@ class Variational final : public Stepper {
     e.kinetic = 0.5 * (kinetic_old_ + kinetic_energy(P_.model(), eta_, ds_));
     e.strain = strain_energy_segments(P_.model(), xi_, ds_);
     e.gravity = gravity_energy(P_, g_, ds_);
+    if (tip_cell_) {  // the half cell's rigid-body terms (corrected_grid.hpp)
+      const Vector6& eta = eta_.back();
+      e.kinetic += 0.25 * 0.5 * ds_ *
+                   eta.dot(tip_cell_->M * eta - legendre_.M.cwiseProduct(eta));
+      e.gravity += tip_cell_->gravity_energy(P_.weight_per_length(), g_.back().rotation(),
+                                             tip_rest_rotation_, ds_);
+    }
     if constexpr (kActuated) {
       if (act_->muscles()) {
         e.kinetic = 0.5 * (kinetic_old_ + kinetic_energy(act_->inertias(), eta_, ds_));
@@ -296,7 +316,8 @@ class Variational final : public Stepper {
     const SO3& R = g_[j].rotation();
     const Vector6 outer = G_[j - 1].coAd_apply(lambda_prev);
     const Vector6& eta_old = eta_[j];
-    Vector6 bar = P_.gravity_load(R);
+    const TipHalfCell* cell = tip && tip_cell_ ? &*tip_cell_ : nullptr;
+    Vector6 bar = cell ? cell->at_centre_of_mass(P_.gravity_load(R)) : P_.gravity_load(R);
     if constexpr (kActuated) {
       if (act_->muscles()) {
         kinetic_old_ += 0.5 * w * eta_old.dot(act_->inertia(j) * eta_old);
@@ -305,7 +326,8 @@ class Variational final : public Stepper {
         kinetic_old_ += 0.5 * w * eta_old.dot(legendre_.M.cwiseProduct(eta_old));
       }
     } else {
-      kinetic_old_ += 0.5 * w * eta_old.dot(legendre_.M.cwiseProduct(eta_old));
+      kinetic_old_ += 0.5 * w * eta_old.dot(cell ? Vector6(cell->M * eta_old)
+                                                 : Vector6(legendre_.M.cwiseProduct(eta_old)));
     }
     add_node_loads(R, eta_old, w, t1, applied, drag, bar, dissipated, work);
     if (tip) work += inner.dot(eta_old);
@@ -328,7 +350,15 @@ class Variational final : public Stepper {
     if (trapezoidal_damping_) eta_old_[j] = eta_old;
     mu_[j] = E.coAd_apply(mu_old) + (kick / w) * force;
     if constexpr (kActuated) return act_->solve_velocity(j, dt, mu_[j], mu_old, eta_[j]);
-    return legendre_.solve(dt, mu_[j], mu_old, eta_[j]);  // (3.42)
+    return solve_velocity(j, dt, mu_[j], mu_old);  // (3.42)
+  }
+
+  /// (3.42) at node j of the plain step: the rod's diagonal mass, or the corrected grid's tip
+  /// half cell.
+  bool solve_velocity(int j, double dt, const Vector6& mu, const Vector6& mu_old) {
+    if (j == n_ - 1 && tip_cell_)
+      return legendre_.solve(dt, mu, mu_old, eta_[j], tip_cell_->M, tip_cell_->M_inv);
+    return legendre_.solve(dt, mu, mu_old, eta_[j]);
   }
 
   // --- the packed step (packed_pair.hpp): the plain step on pairs of nodes -------------------
@@ -589,7 +619,7 @@ class Variational final : public Stepper {
     if (drag) force += drag_correction(j, w, dissipated);
     const Vector6 mu_predicted = mu_[j];
     mu_[j] += (dt / w) * force;
-    return legendre_.solve(dt, mu_[j], mu_predicted, eta_[j]);  // (3.42)
+    return solve_velocity(j, dt, mu_[j], mu_predicted);  // (3.42)
   }
 
   /// Node j's drag at the mean of its velocities before and after t1 less the drag the main
@@ -675,6 +705,8 @@ class Variational final : public Stepper {
   std::vector<DynamicProblem::EntryNode> entries_;
   StaggeredTangent tangent_;
   Energy ledger_;
+  std::optional<TipHalfCell> tip_cell_;  ///< the corrected grid's free tip
+  SO3 tip_rest_rotation_;                ///< the rest pose's at the tip (its gravity energy)
   double kinetic_old_ = 0.0;
   double dt_last_ = 0.0;  ///< the last step's dt (the momenta of a moved state, add_tangent)
   bool kirchhoff_ = false;

@@ -96,6 +96,15 @@ class RodModel {
   /// Mass per unit length rho A.
   double mass_per_length() const { return material_.rho * props_.A; }
 
+  /// This model with the residual bending flexibility of a staggered grid of spacing ds
+  /// (MacNeal's correction; docs/dynamics.md "The corrected grid"): each shear compliance gets
+  /// ds^2 / (12 E I) of the bending it couples with (shear x with bending about y, shear y with
+  /// bending about x), 1 / K'_s = 1 / K_s + ds^2 / (12 K_b), and the shear viscosity likewise
+  /// from the bending viscosity. On the staggered grid the bending symbol of a rod with
+  /// constrained shear is k^4 (1 + (k ds)^2 / 12); with this compliance the grid's symbol is the
+  /// shear-flexible (Timoshenko) rod's to O(ds^4).
+  RodModel with_residual_bending_flexibility(double ds) const;
+
  private:
   double length_;
   Section section_;

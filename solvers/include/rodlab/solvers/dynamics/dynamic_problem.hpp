@@ -96,6 +96,12 @@ class DynamicProblem {
   static DynamicProblem from_scene(const scene::Scene& scene);
 
   const rod::RodModel& model() const { return model_; }
+  /// This problem with another model of the same rod (the corrected grid's, corrected_grid.hpp).
+  DynamicProblem with_model(rod::RodModel model) const {
+    DynamicProblem p = *this;
+    p.model_ = std::move(model);
+    return p;
+  }
   const SE3& base() const { return base_; }
   const std::string& name() const { return name_; }
   double length() const { return model_.length(); }

@@ -47,6 +47,12 @@ struct DynamicSolveOptions {
 /// (dynamics.initial), over the defaults: what `rodlab dynamic` and the studies take from it.
 void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options);
 
+/// The problem on options.grid: `problem` itself, or on the corrected grid its model with the
+/// grid's residual bending flexibility (corrected_grid.hpp; std::invalid_argument naming
+/// solver.grid where options.scheme or the scene cannot take it). `dt: auto` and every run of
+/// a scheme read the problem through it.
+DynamicProblem problem_on_grid(DynamicProblem problem, const DynamicSolveOptions& options);
+
 /// The rod at rest in its rest shape on a grid of `nodes` nodes: the reference configuration's
 /// poses, and each node's strain its segment's rest strain (RodModel::segment_xi_star).
 RestState rest_shape(const DynamicProblem& problem, int nodes);

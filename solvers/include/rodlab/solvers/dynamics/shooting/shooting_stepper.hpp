@@ -34,10 +34,13 @@ namespace rodlab::solvers::dynamics {
 
 /// The spatial grid of a shooting march (`solver.grid`, `--grid`).
 enum class ShootingGrid {
-  euler,     ///< nodes, explicit Euler RKMK (the thesis' Algorithm 2)
-  staggered  ///< nodes and segments of `variational` / `ida` (staggered_shooting_stepper.hpp)
+  euler,      ///< nodes, explicit Euler RKMK (the thesis' Algorithm 2)
+  staggered,  ///< nodes and segments of `variational` / `ida` (staggered_shooting_stepper.hpp)
+  /// the staggered grid with its two O(ds^2) corrections (corrected_grid.hpp); `variational`
+  /// only so far: the shooting steppers refuse it
+  corrected
 };
-/// "euler" / "staggered".
+/// "euler" / "staggered" / "corrected".
 std::string_view shooting_grid_name(ShootingGrid grid);
 std::optional<ShootingGrid> shooting_grid_from_name(std::string_view name);
 

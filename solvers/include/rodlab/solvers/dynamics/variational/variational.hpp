@@ -48,6 +48,10 @@ struct VariationalOptions {
   /// computes the general loop's quantities to rounding; false runs the general loop (the tests
   /// compare the two).
   bool packed = true;
+  /// The corrected grid's free tip (solver.grid: corrected; corrected_grid.hpp): the tip's half
+  /// cell as a rigid body (TipHalfCell). The problem is to carry the grid's model
+  /// (corrected_grid_problem); Cosserat rods without actuators.
+  bool corrected_grid = false;
 };
 
 /// Starts at rest from `initial` (options.nodes nodes).

@@ -1,0 +1,44 @@
+#include "rodlab/solvers/dynamics/corrected_grid.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "rodlab/lie/so3.hpp"
+
+namespace rodlab::solvers::dynamics {
+
+void require_corrected_grid(const DynamicProblem& problem, std::string_view scheme) {
+  if (scheme != "variational")
+    throw std::invalid_argument("solver.grid: corrected is implemented for variational only so "
+                                "far; use the staggered grid with " + std::string(scheme));
+  if (problem.is_kirchhoff())
+    throw std::invalid_argument(
+        "solver.grid: corrected needs rod.model cosserat (its bending correction is a shear "
+        "compliance, and a Kirchhoff rod has no shear); use solver.grid: staggered");
+  if (problem.has_actuators())
+    throw std::invalid_argument(
+        "solver.grid: corrected does not take actuators yet (their node inertia and loads are "
+        "not corrected); use solver.grid: staggered");
+}
+
+DynamicProblem corrected_grid_problem(const DynamicProblem& problem, int nodes) {
+  return problem.with_model(
+      problem.model().with_residual_bending_flexibility(problem.length() / (nodes - 1)));
+}
+
+TipHalfCell TipHalfCell::make(const rod::RodModel& model, int nodes) {
+  const double ds = model.length() / (nodes - 1);
+  const lie::Vector3 nu = model.segment_xi_star(nodes - 2, nodes).tail<3>();
+  TipHalfCell cell;
+  cell.offset = -(ds / 6.0) * nu.normalized();
+  const double rho_A = model.mass_per_length();
+  const lie::Matrix3 d = lie::so3::hat(cell.offset);
+  cell.M = model.M_diag().asDiagonal();
+  cell.M.topLeftCorner<3, 3>() -= rho_A * d * d;
+  cell.M.topRightCorner<3, 3>() = rho_A * d;
+  cell.M.bottomLeftCorner<3, 3>() = -rho_A * d;
+  cell.M_inv = cell.M.inverse();
+  return cell;
+}
+
+}  // namespace rodlab::solvers::dynamics
