@@ -22,6 +22,7 @@ struct Plan {
 
   /// Appends a run; returns its index.
   int add(RunSpec spec, const char* role, int reference) {
+    spec.reference = std::string_view(role) == "reference";
     specs.push_back(std::move(spec));
     roles.emplace_back(role);
     reference_of.push_back(reference);

@@ -26,6 +26,10 @@ struct RunSpec {
   double tol = 1e-10;   ///< nonlinear solver tolerance
   int repeats = 1;      ///< timed repetitions (the result is the same every time)
   bool keep_series = true;  ///< dynamics: keep the tip trajectory (for errors over time)
+  /// The study's reference run: on the staggered grid where the scene sets solver.grid:
+  /// corrected (variational's alone; docs/studies.md "recommend"), so that the corrected grid's
+  /// runs are measured against the converged answer.
+  bool reference = false;
 };
 
 /// What came out.

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <string_view>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +16,7 @@
 
 #include "rodlab/io/atomic_file.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
 
 namespace rodlab::validation::study {
@@ -29,11 +32,33 @@ std::vector<int> study_nodes(const Settings& settings) {
                                 : settings.nodes;
 }
 
+namespace {
+
+/// The problem `scheme` runs at N nodes on the scene's grid (solver.grid: corrected changes
+/// variational's shear stiffness and with it its automatic step); where the scheme does not
+/// take that grid, the scene's own (its runs are refused, and recorded so).
+solvers::dynamics::DynamicProblem study_problem(const Settings& settings, std::string_view scheme,
+                                                int nodes) {
+  auto problem = solvers::dynamics::DynamicProblem::from_scene(settings.scene);
+  solvers::dynamics::DynamicSolveOptions options;
+  options.scheme = std::string(scheme);
+  options.nodes = nodes;
+  solvers::dynamics::apply_scene_options(settings.scene, options);
+  try {
+    return solvers::dynamics::problem_on_grid(problem, options);
+  } catch (const std::invalid_argument&) {
+    return problem;
+  }
+}
+
+}  // namespace
+
 std::vector<double> study_steps(const Settings& settings, const solvers::SchemeInfo& scheme,
                                 int nodes) {
   if (!settings.dts.empty()) return settings.dts;
-  const auto problem = solvers::dynamics::DynamicProblem::from_scene(settings.scene);
-  const double dt = solvers::dynamics::auto_time_step(problem, scheme.name, nodes);
+  const double dt =
+      solvers::dynamics::auto_time_step(study_problem(settings, scheme.name, nodes), scheme.name,
+                                        nodes);
   return {dt, dt / 2, dt / 4, dt / 8};
 }
 
@@ -48,8 +73,8 @@ double equal_step(const Settings& settings, double dt) {
 /// stability limit), none for an implicit one.
 double step_limit(const Settings& settings, const solvers::SchemeInfo& scheme, int nodes) {
   if (scheme.implicit) return std::numeric_limits<double>::infinity();
-  return solvers::dynamics::auto_time_step(
-      solvers::dynamics::DynamicProblem::from_scene(settings.scene), scheme.name, nodes);
+  return solvers::dynamics::auto_time_step(study_problem(settings, scheme.name, nodes),
+                                           scheme.name, nodes);
 }
 
 }  // namespace
