@@ -11,6 +11,7 @@ a CSV (not on the machine) are left out and named.
 """
 import argparse
 import glob
+import itertools
 import math
 import os
 
@@ -59,7 +60,7 @@ def figure(codes, path, case):
 
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
     colours = {"rodlab": "tab:blue", "Till": "tab:red", "PyElastica": "tab:green"}
-    markers = iter("os^vD<>ph*")
+    markers = itertools.cycle("os^vD<>ph*")  # more configurations than shapes: repeat
     for code, rows in codes.items():
         colour = colours.get(code, "tab:gray")
         for config in sorted({r["configuration"] for r in rows}):

@@ -272,8 +272,9 @@ class Variational final : public Stepper {
     e.strain = strain_energy_segments(P_.model(), xi_, ds_);
     e.gravity = gravity_energy(P_, g_, ds_);
     if (tip_cell_) {  // the half cell's rigid-body terms (corrected_grid.hpp)
+      // its share of the mean above: 1/2 x 1/2 eta^T (M_tip - M) eta x the cell ds / 2
       const Vector6& eta = eta_.back();
-      e.kinetic += 0.25 * 0.5 * ds_ *
+      e.kinetic += 0.5 * 0.5 * (0.5 * ds_) *
                    eta.dot(tip_cell_->M * eta - legendre_.M.cwiseProduct(eta));
       e.gravity += tip_cell_->gravity_energy(P_.weight_per_length(), g_.back().rotation(),
                                              tip_rest_rotation_, ds_);
