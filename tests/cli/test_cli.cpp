@@ -409,6 +409,13 @@ BOOST_AUTO_TEST_CASE(dynamic_corrected_grid_option) {
                                       << tip[0] << ", " << tip[1]);
   BOOST_TEST(dt[1] > 1.4 * dt[0]);
   BOOST_TEST(std::abs(tip[0] - tip[1]) > 1e-5);
+  // `rodlab check` reports the step of the scene's grid: within one step of the run's
+  const Run c = box.run("check " + scene + " --nodes 6 --set solver.grid=corrected --json");
+  BOOST_REQUIRE_EQUAL(c.status, 0);
+  const double reported = Json::parse(c.out)["time_scales"]["dt_auto_variational"];
+  // (the run takes t_end / ceil(t_end / auto): auto in [dt, dt / (1 - dt / t_end)))
+  BOOST_TEST(dt[1] <= reported * (1 + 1e-12));
+  BOOST_TEST(reported < dt[1] / (1.0 - dt[1] / 0.05));
   for (const char* scheme : {"ida", "implicit-midpoint", "implicit-midpoint-collocation"})
     expect_bad_input(box, "dynamic " + scene + " --scheme " + scheme +
                               " --grid corrected --t-end 0.01 --out a.json",
