@@ -260,16 +260,12 @@ ReportSection time_section(const scene::Scene& scene, const rod::Characteristics
   try {
     namespace d = solvers::dynamics;
     const auto problem = d::DynamicProblem::from_scene(scene);
-    d::DynamicSolveOptions variational;  // on the scene's grid (solver.grid: corrected)
-    variational.scheme = "variational";
-    variational.nodes = c.nodes;
-    d::apply_scene_options(scene, variational);
+    // on the scene's grid (solver.grid: corrected)
+    const auto on_grid = d::scene_problem_on_grid(scene, "variational", c.nodes);
     s.items.push_back({"dt_auto_variational", "variational step (dt: auto)",
                        io::format_number(d::kVariationalSafety) +
                            " x stable step (waves, viscosity, drag)",
-                       d::auto_time_step(d::problem_on_grid(problem, variational), "variational",
-                                         c.nodes),
-                       "s"});
+                       d::auto_time_step(on_grid, "variational", c.nodes), "s"});
     s.items.push_back({"dt_auto_implicit", "implicit step (dt: auto)", "first bending period / 10",
                        d::auto_time_step(problem, "implicit-midpoint", c.nodes), "s"});
   } catch (const std::exception&) {  // a scene the dynamics cannot take: `rodlab dynamic` says why

@@ -113,6 +113,15 @@ DynamicProblem problem_on_grid(DynamicProblem problem, const DynamicSolveOptions
   return corrected_grid_problem(problem, options.nodes);
 }
 
+DynamicProblem scene_problem_on_grid(const scene::Scene& scene, std::string_view scheme,
+                                     int nodes) {
+  DynamicSolveOptions options;
+  options.scheme = std::string(scheme);
+  options.nodes = nodes;
+  apply_scene_options(scene, options);
+  return problem_on_grid(DynamicProblem::from_scene(scene), options);
+}
+
 std::string step_problem(const DynamicProblem& problem, const DynamicSolveOptions& options,
                          double dt) {
   const SchemeId id = scheme_for(options.scheme, Problem::dynamics).id;

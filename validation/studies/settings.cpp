@@ -39,15 +39,10 @@ namespace {
 /// take that grid, the scene's own (its runs are refused, and recorded so).
 solvers::dynamics::DynamicProblem study_problem(const Settings& settings, std::string_view scheme,
                                                 int nodes) {
-  auto problem = solvers::dynamics::DynamicProblem::from_scene(settings.scene);
-  solvers::dynamics::DynamicSolveOptions options;
-  options.scheme = std::string(scheme);
-  options.nodes = nodes;
-  solvers::dynamics::apply_scene_options(settings.scene, options);
   try {
-    return solvers::dynamics::problem_on_grid(problem, options);
+    return solvers::dynamics::scene_problem_on_grid(settings.scene, scheme, nodes);
   } catch (const std::invalid_argument&) {
-    return problem;
+    return solvers::dynamics::DynamicProblem::from_scene(settings.scene);
   }
 }
 

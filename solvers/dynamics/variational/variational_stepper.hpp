@@ -87,8 +87,7 @@ class Variational final : public Stepper {
     const Vector6 M = problem.model().M_diag();
     legendre_ = {M, M.cwiseInverse(), options.tol, options.max_iterations};
     if (options.corrected_grid) {
-      if (kActuated || kirchhoff_ || problem.has_actuators())
-        require_corrected_grid(problem, "variational");
+      require_corrected_grid(problem, "variational");  // Cosserat, no actuators
       if (!clamped_) {
         tip_cell_ = TipHalfCell::make(problem.model(), n_);
         tip_rest_rotation_ =

@@ -4,6 +4,7 @@
 // as NaN or a silent success).
 #include <functional>
 #include <string>
+#include <string_view>
 
 #include "rodlab/result/dynamic_result.hpp"
 #include "rodlab/scene/scene.hpp"
@@ -52,6 +53,10 @@ void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options
 /// solver.grid where options.scheme or the scene cannot take it). `dt: auto` and every run of
 /// a scheme read the problem through it.
 DynamicProblem problem_on_grid(DynamicProblem problem, const DynamicSolveOptions& options);
+/// The problem `scheme` runs at `nodes` nodes on the scene's own grid (apply_scene_options, then
+/// problem_on_grid, which throws where the scheme or the scene cannot take that grid).
+DynamicProblem scene_problem_on_grid(const scene::Scene& scene, std::string_view scheme,
+                                     int nodes);
 
 /// The rod at rest in its rest shape on a grid of `nodes` nodes: the reference configuration's
 /// poses, and each node's strain its segment's rest strain (RodModel::segment_xi_star).
