@@ -24,6 +24,7 @@ struct Content {
   klu_l_symbolic* symbolic = nullptr;
   klu_l_numeric* numeric = nullptr;
   std::vector<double> factorised;  ///< the values of the last factorised matrix
+  bool keep_factors = true;        ///< across KINSol calls
   int last_flag = SUNLS_SUCCESS;
   KeptKluCounts counts;
 };
@@ -33,8 +34,16 @@ Content& content(SUNLinearSolver S) { return *static_cast<Content*>(S->content);
 SUNLinearSolver_Type get_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
 SUNLinearSolver_ID get_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
 
-/// KINSOL calls this at the start of every KINSol: the analysis and factors are kept.
-int initialize(SUNLinearSolver S) { return content(S).last_flag = SUNLS_SUCCESS; }
+/// KINSOL calls this at the start of every KINSol: the analysis is kept, and the factors too
+/// with keep_factors (else the call's first setup factorises afresh).
+int initialize(SUNLinearSolver S) {
+  Content& c = content(S);
+  if (!c.keep_factors) {
+    if (c.numeric) klu_l_free_numeric(&c.numeric, &c.common);
+    c.factorised.clear();
+  }
+  return c.last_flag = SUNLS_SUCCESS;
+}
 
 /// A fresh numeric factorisation (new pivots) of the values in A.
 bool factor(Content& c, sunindextype* Ap, sunindextype* Ai, double* Ax) {
@@ -241,7 +250,8 @@ void copy_numeric(klu_l_numeric*& dst, const klu_l_numeric& src, klu_l_common& c
 
 }  // namespace
 
-SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx, bool natural_order) {
+SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx, bool natural_order,
+                                     bool keep_factors) {
   SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
   if (!S) return nullptr;
   auto* c = new (std::nothrow) Content;
@@ -250,6 +260,7 @@ SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx, bool natural_order)
     return nullptr;
   }
   c->n = n;
+  c->keep_factors = keep_factors;
   klu_l_defaults(&c->common);
   // KLU: 0 AMD, 1 COLAMD, 2 no P and Q given (klu_analyze takes the natural order)
   if (natural_order) c->common.ordering = 2;

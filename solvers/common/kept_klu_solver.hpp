@@ -5,10 +5,12 @@
 // (KINSOL's solver initialisation forces a full factorisation), it
 //   - analyses the pattern once (KLU's defaults: BTF and AMD ordering) and keeps the analysis
 //     for the life of the solver;
-//   - keeps the numeric factorisation across KINSol calls and refactors numerically on the
-//     kept pivot order (klu_refactor), falling back to a fresh factorisation with new pivots
-//     when the refactored matrix looks ill-conditioned (klu_rcond below eps^(2/3), the test
-//     SUNLinSol_KLU uses) or the refactorisation fails;
+//   - refactors numerically on the kept pivot order (klu_refactor), falling back to a fresh
+//     factorisation with new pivots when the refactored matrix looks ill-conditioned (klu_rcond
+//     below eps^(2/3), the test SUNLinSol_KLU uses) or the refactorisation fails;
+//   - keeps the numeric factorisation across KINSol calls (`keep_factors`), or factorises the
+//     first matrix of every KINSol call afresh (pivots chosen for it, as SUNLinSol_KLU does), so
+//     that a solve does not depend on the ones before;
 //   - skips the factorisation altogether when the matrix values equal those it factorised
 //     last (a Jacobian reused across steps), so the solves use the same factors bit for bit.
 // Private to solvers/common (includes SUNDIALS and KLU headers).
@@ -20,7 +22,9 @@ namespace rodlab::solvers::sundials {
 /// A new solver owned by the caller (SUNLinSolFree releases it); NULL on allocation failure.
 /// `n` is the system size; the matrix passed to setup must be a CSC SUNSparseMatrix with the
 /// same pattern at every call. `natural_order`: KLU keeps the pattern's column order (no AMD).
-SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx, bool natural_order = false);
+/// `keep_factors`: the factors carry over from one KINSol call to the next.
+SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx, bool natural_order = false,
+                                     bool keep_factors = true);
 
 /// Numeric factorisations done by the solver (fresh and refactored) and setups it skipped.
 struct KeptKluCounts {

@@ -79,13 +79,13 @@ void check_kinls(int flag, const char* call) {
 }  // namespace
 
 struct KinsolSolver::Impl {
-  Impl(sundials::JacobianPattern pattern, bool keep, KluOrder order)
-      : pattern(std::move(pattern)), order(order) {
-    create(keep);
+  Impl(sundials::JacobianPattern pattern, KluReuse reuse, KluOrder order)
+      : pattern(std::move(pattern)), order(order), reuse(reuse) {
+    create();
   }
 
   /// The SUNDIALS objects for a system of the pattern's size.
-  void create(bool keep) {
+  void create() {
     const int n = pattern.size();
     context = sundials::make_context("KINSOL");
     SUNContext ctx = context.get();
@@ -93,13 +93,15 @@ struct KinsolSolver::Impl {
     u_scale = sundials::make_vector(n, ctx, "KINSOL");
     f_scale = sundials::make_vector(n, ctx, "KINSOL");
     A = pattern.make_matrix(ctx);
-    keep_factorisation = keep;
     const bool natural = order == KluOrder::natural;
-    linear_solver.reset(keep ? sundials::check_created(sundials::make_kept_klu_solver(n, ctx, natural),
-                                                       "KINSOL", "make_kept_klu_solver")
-                             : sundials::check_created(SUNLinSol_KLU(u.get(), A.get(), ctx),
-                                                       "KINSOL", "SUNLinSol_KLU"));
-    if (!keep && natural && SUNLinSol_KLUSetOrdering(linear_solver.get(), 2) != SUNLS_SUCCESS)
+    const bool kept = reuse != KluReuse::none;
+    linear_solver.reset(
+        kept ? sundials::check_created(
+                   sundials::make_kept_klu_solver(n, ctx, natural, reuse == KluReuse::factors),
+                   "KINSOL", "make_kept_klu_solver")
+             : sundials::check_created(SUNLinSol_KLU(u.get(), A.get(), ctx), "KINSOL",
+                                       "SUNLinSol_KLU"));
+    if (!kept && natural && SUNLinSol_KLUSetOrdering(linear_solver.get(), 2) != SUNLS_SUCCESS)
       throw std::runtime_error("KINSOL: SUNLinSol_KLUSetOrdering failed");
   }
 
@@ -110,7 +112,7 @@ struct KinsolSolver::Impl {
   sundials::LinearSolverPtr linear_solver;
   sundials::JacobianPattern pattern;  // the callback writes its values
   KluOrder order = KluOrder::fill_reducing;
-  bool keep_factorisation = false;
+  KluReuse reuse = KluReuse::none;
 
   /// What the C callbacks need during one solve.
   struct Call {
@@ -152,12 +154,12 @@ struct KinsolSolver::Impl {
   }
 };
 
-KinsolSolver::KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation, KluOrder order)
-    : impl_(std::make_unique<Impl>(sundials::JacobianPattern(pattern, "KinsolSolver"),
-                                   keep_factorisation, order)) {}
+KinsolSolver::KinsolSolver(const SparseMatrix& pattern, KluReuse reuse, KluOrder order)
+    : impl_(std::make_unique<Impl>(sundials::JacobianPattern(pattern, "KinsolSolver"), reuse,
+                                   order)) {}
 
 KinsolSolver::KinsolSolver(const KinsolSolver& other)
-    : impl_(std::make_unique<Impl>(other.impl_->pattern, other.impl_->keep_factorisation,
+    : impl_(std::make_unique<Impl>(other.impl_->pattern, other.impl_->reuse,
                                    other.impl_->order)) {
   assign(other);
 }
@@ -168,7 +170,7 @@ void KinsolSolver::assign(const KinsolSolver& other) {
   if (&d == &o) return;
   const sunindextype nnz = SUNSparseMatrix_NNZ(d.A.get());
   if (d.pattern.size() != o.pattern.size() || nnz != SUNSparseMatrix_NNZ(o.A.get()) ||
-      d.keep_factorisation != o.keep_factorisation)
+      d.reuse != o.reuse)
     throw std::invalid_argument(
         "KinsolSolver::assign: from a solver of another size or factorisation mode");
   N_VScale(1.0, o.u.get(), d.u.get());
@@ -177,7 +179,8 @@ void KinsolSolver::assign(const KinsolSolver& other) {
   const double* values = SUNSparseMatrix_Data(o.A.get());
   std::copy(values, values + nnz, SUNSparseMatrix_Data(d.A.get()));
   // SUNLinSol_KLU analyses and factorises afresh at the start of every solve: nothing is kept.
-  if (d.keep_factorisation) sundials::assign_kept_klu(d.linear_solver.get(), o.linear_solver.get());
+  if (d.reuse != KluReuse::none)
+    sundials::assign_kept_klu(d.linear_solver.get(), o.linear_solver.get());
 }
 
 KinsolSolver::~KinsolSolver() = default;
@@ -241,10 +244,10 @@ KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacob
   check_kin(KINSetMaxSetupCalls(mem, options.max_setup_calls), "KINSetMaxSetupCalls");
   check_kin(KINSetPrintLevel(mem, options.print_level), "KINSetPrintLevel");
   if (options.reuse_factorisation) {
-    if (!d.keep_factorisation)
+    if (d.reuse != KluReuse::factors)
       throw std::invalid_argument(
           "KinsolSolver::solve: reuse_factorisation needs a solver constructed with "
-          "keep_factorisation");
+          "KluReuse::factors");
     check_kin(KINSetNoInitSetup(mem, SUNTRUE), "KINSetNoInitSetup");
   }
   if (options.max_newton_step > 0.0)

@@ -5,8 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <stdexcept>
 #include <vector>
 
@@ -66,6 +68,8 @@ class Collocation {
   int nodes() const { return N_; }
   int extra() const { return extra_; }
   int size() const { return kState * N_ + extra_; }
+  /// What pattern() depends on: the nodes and the extra unknowns.
+  std::pair<int, int> pattern_key() const { return {N_, extra_}; }
   double s(int i) const { return s_[i]; }
 
   /// Node i's data from the scaled unknowns x (the extra unknowns must be set in P_).
@@ -210,7 +214,8 @@ class Collocation {
   }
 
   /// Block-bidiagonal pattern: the columns of node j have the rows [first_row(j), last_row(j)]
-  /// and the extra rows (path-length conditions); the extra columns are dense.
+  /// and the extra rows (path-length conditions); the extra columns are dense. A function of
+  /// pattern_key() alone.
   Sparse pattern() const {
     std::vector<int> outer(size() + 1), inner;
     inner.reserve(static_cast<std::size_t>(kState) * (2 * kState + extra_) * N_ +
@@ -463,11 +468,62 @@ class Collocation {
   std::vector<Lengths> lengths_;  // workspace: interval path-length quadratures at the current x
 };
 
+/// KINSOL with KLU for the collocation's pattern, kept on this thread from one solve to the next
+/// of the same pattern (repeated solves: a study's sweep, the inverse statics and controllers
+/// that call the statics as their model, the benchmarks): its SUNDIALS objects and KLU's
+/// analysis are made once (KluReuse::analysis). Every KINSOL run still factorises its first
+/// Jacobian afresh, so a solve does not depend on the ones before; keeping the factors too
+/// (refactorising on the last solve's pivots) was faster still, 1.9 against 2.1 ms at N = 100,
+/// but lost kinsol's large-tension case (tests/statics/test_chebyshev_actuators.cpp, N = 161):
+/// pivots from the previous continuation step left its line search without descent. A solve
+/// that starts while another holds the kept solver (nested solves) gets a solver of its own.
+class ThreadSolver {
+ public:
+  explicit ThreadSolver(const Collocation& C) {
+    Slot& slot = this_thread_slot();
+    auto make = [&C] { return std::make_unique<KinsolSolver>(C.pattern(), KluReuse::analysis, KluOrder::natural); };
+    if (slot.in_use) {
+      own_ = make();
+      solver_ = own_.get();
+      return;
+    }
+    if (!slot.solver || slot.key != C.pattern_key()) {
+      slot.solver.reset();  // releases the old factors first
+      slot.solver = make();
+      slot.key = C.pattern_key();
+    }
+    slot.in_use = true;
+    slot_ = &slot;
+    solver_ = slot.solver.get();
+  }
+  ~ThreadSolver() {
+    if (slot_) slot_->in_use = false;
+  }
+  ThreadSolver(const ThreadSolver&) = delete;
+  ThreadSolver& operator=(const ThreadSolver&) = delete;
+
+  KinsolSolver& get() { return *solver_; }
+
+ private:
+  struct Slot {
+    std::pair<int, int> key;  // Collocation::pattern_key
+    std::unique_ptr<KinsolSolver> solver;
+    bool in_use = false;
+  };
+  static Slot& this_thread_slot() {
+    static thread_local Slot slot;
+    return slot;
+  }
+  Slot* slot_ = nullptr;
+  std::unique_ptr<KinsolSolver> own_;
+  KinsolSolver* solver_ = nullptr;
+};
+
 class Driver {
  public:
   Driver(const StaticProblem& problem, const KinsolCollocationOptions& options)
       : C_(problem, options.nodes), options_(options),
-        solver_(C_.pattern(), false, KluOrder::natural) {  // block-banded in node order
+        solver_(C_) {
     kinsol_.fnormtol = options.tol;
     kinsol_.scsteptol = options.step_tol;
     kinsol_.max_iterations = options.max_iterations;
@@ -486,7 +542,7 @@ class Driver {
     C_.problem().set_load_factor(load_factor);
     KinsolOptions options = kinsol_;
     if (max_iterations > 0) options.max_iterations = std::min(max_iterations, options.max_iterations);
-    KinsolStats stats = solver_.solve(
+    KinsolStats stats = solver_.get().solve(
         x, [this](const ConstRef& u, Ref F) { C_.residual(u, F); },
         [this](const ConstRef& u, const ConstRef&, Sparse& J) { C_.jacobian(u, J); }, options);
     ++report_.kinsol_solves;
@@ -629,7 +685,7 @@ class Driver {
 
   Collocation C_;
   KinsolCollocationOptions options_;
-  KinsolSolver solver_;
+  ThreadSolver solver_;  // block-banded in node order: KLU's natural column order
   KinsolOptions kinsol_;
   KinsolCollocationReport report_;
 };

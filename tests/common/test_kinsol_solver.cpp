@@ -18,6 +18,7 @@ using rodlab::solvers::KinsolRecoverableError;
 using rodlab::solvers::KinsolSolver;
 using rodlab::solvers::KinsolStats;
 using rodlab::solvers::KluOrder;
+using rodlab::solvers::KluReuse;
 using Vector = Eigen::VectorXd;
 using Sparse = KinsolSolver::SparseMatrix;
 using VecRef = Eigen::Ref<Vector>;
@@ -170,8 +171,8 @@ BOOST_AUTO_TEST_CASE(natural_column_order_finds_the_same_root) {
   Vector reference = Vector::Constant(p.n, -1.0);
   KinsolSolver fill_reducing(p.pattern());
   BOOST_TEST(fill_reducing.solve(reference, residual_of(p), jacobian_of(p), options).converged);
-  for (bool keep : {false, true}) {
-    KinsolSolver natural(p.pattern(), keep, KluOrder::natural);
+  for (KluReuse reuse : {KluReuse::none, KluReuse::analysis, KluReuse::factors}) {
+    KinsolSolver natural(p.pattern(), reuse, KluOrder::natural);
     Vector x = Vector::Constant(p.n, -1.0);
     const KinsolStats stats = natural.solve(x, residual_of(p), jacobian_of(p), options);
     BOOST_TEST(stats.converged);
@@ -213,10 +214,10 @@ BOOST_AUTO_TEST_CASE(copy_and_assign_repeat_the_kept_factors) {
     BOOST_TEST_REQUIRE(stats.converged);
     return x;
   };
-  KinsolSolver original(p.pattern(), /*keep_factorisation=*/true);
+  KinsolSolver original(p.pattern(), KluReuse::factors);
   solve_from(original, -1.0, false);
   KinsolSolver copy(original);
-  KinsolSolver assigned(p.pattern(), true), other(p.pattern(), true);
+  KinsolSolver assigned(p.pattern(), KluReuse::factors), other(p.pattern(), KluReuse::factors);
   solve_from(assigned, -0.5, false);  // other factors, then replaced by the original's
   assigned.assign(original);
   solve_from(other, -0.5, false);
@@ -224,7 +225,7 @@ BOOST_AUTO_TEST_CASE(copy_and_assign_repeat_the_kept_factors) {
   BOOST_TEST((solve_from(copy, -0.9, true) - reference).norm() == 0.0);
   BOOST_TEST((solve_from(assigned, -0.9, true) - reference).norm() == 0.0);
   BOOST_TEST((solve_from(other, -0.9, true) - reference).norm() > 0.0);  // the factors matter
-  KinsolSolver smaller(BroydenTridiagonal{10}.pattern(), true);
+  KinsolSolver smaller(BroydenTridiagonal{10}.pattern(), KluReuse::factors);
   BOOST_CHECK_THROW(smaller.assign(original), std::invalid_argument);
 }
 

@@ -44,7 +44,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
                               std::span<const SE3> g0)
       : rod_(problem, options.nodes, "implicit-midpoint-collocation", true),
         kinsol_(constrained() ? rod_.constrained_pattern() : rod_.pattern(false),
-                /*keep_factorisation=*/true),
+                KluReuse::factors),
         tangent_(options.nodes, problem.model()) {
     if (!(options.tol > 0.0))
       throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");

@@ -49,7 +49,7 @@ struct KinsolOptions {
   Eigen::VectorXd f_scale;     ///< diagonal scaling of the residual; empty: ones
   int print_level = 0;         ///< KINSetPrintLevel 0-3: KINSOL's own iteration log on stdout
   bool reuse_factorisation = false;  ///< start with the previous solve's factorised Jacobian
-                                     ///< (KINSetNoInitSetup); only with keep_factorisation and
+                                     ///< (KINSetNoInitSetup); only with KluReuse::factors and
                                      ///< after a solve that factorised one
 };
 
@@ -73,6 +73,17 @@ struct KinsolStats {
 /// (kinsol statics, N = 100: 3.3 -> 2.7 ms per solve, docs/statics.md "kinsol").
 enum class KluOrder { fill_reducing, natural };
 
+/// What KLU keeps from one solve() to the next (kept_klu_solver.hpp).
+/// `none`: SUNDIALS' SUNLinSol_KLU, which analyses and factorises afresh at every solve().
+/// `analysis`: the pattern is analysed once; every solve() factorises its first Jacobian afresh
+/// (pivots chosen for it) and refactorises the later ones on those pivots, so a solve does not
+/// depend on the ones before (repeated static solves: kinsol statics).
+/// `factors`: the factors too (for callers that solve many nearby systems, e.g. once per time
+/// step): every Jacobian is refactorised numerically on the kept pivot order (a fresh
+/// factorisation when that looks ill-conditioned), and one whose values equal the last
+/// factorised one is not factorised again.
+enum class KluReuse { none, analysis, factors };
+
 class KinsolSolver {
  public:
   using Vector = Eigen::VectorXd;
@@ -85,24 +96,18 @@ class KinsolSolver {
 
   /// A solver for square systems whose Jacobian has the structural non-zeros of `pattern`
   /// (values are ignored). Throws std::invalid_argument for a non-square or empty pattern and
-  /// std::runtime_error when SUNDIALS cannot create its objects.
-  /// `keep_factorisation` (for callers that solve many nearby systems, e.g. once per time
-  /// step): KLU analyses the pattern once, keeps its factors across solve() calls, refactors
-  /// numerically on the kept pivot order (a fresh factorisation when that looks
-  /// ill-conditioned), and does not factorise a Jacobian whose values equal the last
-  /// factorised one (kept_klu_solver.hpp). Without it, SUNDIALS' SUNLinSol_KLU, which
-  /// analyses and factorises afresh at the start of every solve(). `order`: KLU's column order.
-  explicit KinsolSolver(const SparseMatrix& pattern, bool keep_factorisation = false,
+  /// std::runtime_error when SUNDIALS cannot create its objects. `reuse`: what KLU keeps
+  /// between solves (KluReuse); `order`: KLU's column order.
+  explicit KinsolSolver(const SparseMatrix& pattern, KluReuse reuse = KluReuse::none,
                         KluOrder order = KluOrder::fill_reducing);
   ~KinsolSolver();
   /// A deep copy (allocates): its own context, vectors, matrix and linear solver, in the state
-  /// of `other` (with keep_factorisation, KLU's analysis and kept factors), so that its solves
+  /// of `other` (with kept factors, KLU's analysis and those factors), so that its solves
   /// repeat those of `other` bit for bit (control snapshots of a time stepper, stepper.hpp). The
   /// KINSOL memory is created afresh by every solve(), so there is none to copy.
   KinsolSolver(const KinsolSolver& other);
   KinsolSolver& operator=(const KinsolSolver&) = delete;
-  /// Makes this solver's state that of `other`, a solver of the same pattern and factorisation
-  /// mode: the vectors (N_VScale) and matrix values (copied into this solver's own), and the kept
+  /// Makes this solver's state that of `other`, a solver of the same pattern and KluReuse: the vectors (N_VScale) and matrix values (copied into this solver's own), and the kept
   /// KLU analysis and factors (into its arrays when they fit, which is the steady state of a
   /// snapshot that is saved and restored: no allocation). Throws std::invalid_argument for
   /// another size or mode.

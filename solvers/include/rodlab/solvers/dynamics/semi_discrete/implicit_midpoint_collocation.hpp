@@ -25,7 +25,7 @@
 // kept across steps and refreshed when a solve needed more
 // than a few iterations, every `jacobian_max_age` steps, or when KINSOL asks again within a
 // solve (a stale Jacobian that fails is recomputed; the diagonal follows a change of dt). Its
-// KLU factors are kept with it (KinsolSolver's keep_factorisation): a step with the kept
+// KLU factors are kept with it (KinsolSolver's KluReuse::factors): a step with the kept
 // Jacobian and an unchanged dt starts from them without refactorising, the symbolic analysis
 // is done once, and a new Jacobian is refactorised numerically on the kept pivot order.
 // A step that does not converge is a failed StepStatus with KINSOL's flag and the state is left
