@@ -82,6 +82,7 @@ std::unique_ptr<Stepper> collocation(const DynamicProblem& problem, const Dynami
   options.nodes = o.nodes;
   options.tol = o.tol;
   options.max_iterations = o.max_iterations;
+  options.corrected_grid = o.grid == dynamics::ShootingGrid::corrected;
   return dynamics::make_implicit_midpoint_collocation(problem, options, initial);
 }
 
@@ -91,6 +92,7 @@ std::unique_ptr<Stepper> ida(const DynamicProblem& problem, const DynamicSolveOp
   options.nodes = o.nodes;
   options.rtol = o.rtol;
   options.atol = o.atol;
+  options.corrected_grid = o.grid == dynamics::ShootingGrid::corrected;
   return dynamics::make_ida(problem, options, initial);
 }
 

@@ -8,9 +8,15 @@
 namespace rodlab::solvers::dynamics {
 
 void require_corrected_grid(const DynamicProblem& problem, std::string_view scheme) {
-  if (scheme != "variational")
-    throw std::invalid_argument("solver.grid: corrected is implemented for variational only so "
-                                "far; use the staggered grid with " + std::string(scheme));
+  if (scheme != "variational" && scheme != "ida" && scheme != "implicit-midpoint-collocation")
+    throw std::invalid_argument(
+        "solver.grid: corrected is implemented for variational, ida and "
+        "implicit-midpoint-collocation so far; use the staggered grid with " +
+        std::string(scheme));
+  require_corrected_grid_rod(problem);
+}
+
+void require_corrected_grid_rod(const DynamicProblem& problem) {
   if (problem.is_kirchhoff())
     throw std::invalid_argument(
         "solver.grid: corrected needs rod.model cosserat (its bending correction is a shear "

@@ -25,7 +25,7 @@ long chunk_steps(const IdaOptions& options) {
 class IdaReference final : public Stepper {
  public:
   IdaReference(const DynamicProblem& problem, const IdaOptions& options, std::span<const SE3> g0)
-      : rod_(problem, options.nodes, "ida", true) {
+      : rod_(problem, options.nodes, "ida", true, options.corrected_grid) {
     RODLAB_THROW_UNLESS(static_cast<int>(g0.size()) == rod_.nodes(),
                         "ida: expected {} initial poses, got {}", rod_.nodes(), g0.size());
     if (!(options.rtol > 0.0) || !(options.atol > 0.0))

@@ -42,7 +42,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   ImplicitMidpointCollocation(const DynamicProblem& problem,
                               const ImplicitMidpointCollocationOptions& options,
                               std::span<const SE3> g0)
-      : rod_(problem, options.nodes, "implicit-midpoint-collocation", true),
+      : rod_(problem, options.nodes, "implicit-midpoint-collocation", true,
+             options.corrected_grid),
         kinsol_(constrained() ? rod_.constrained_pattern() : rod_.pattern(false),
                 KluReuse::factors),
         tangent_(options.nodes, problem.model()) {

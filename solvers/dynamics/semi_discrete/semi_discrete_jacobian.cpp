@@ -120,9 +120,9 @@ void SemiDiscreteRod::linearise_node(int j, double t, NodeLinearisation& out) co
   const double w = tip ? 0.5 * ds_ : ds_;
   const SO3& R = g_[j].rotation();
   const Vector6& eta = eta_[j];
-  const Vector6 Meta = M_.cwiseProduct(eta);
+  const Matrix6 M = full_inertia_ ? inertia_[j] : Matrix6(M_.asDiagonal());
   // d(ad_eta^T M eta) = S(M eta) deta + ad_eta^T M deta
-  out.eta_velocity = se3::coad_matrix(Meta) + se3::ad(eta).transpose() * M_.asDiagonal();
+  out.eta_velocity = se3::coad_matrix(M * eta) + se3::ad(eta).transpose() * M;
   // Loads of the pose (gravity, distributed, tip): central differences in dtheta.
   const Vector6 applied = P_.applied_load(R, t);
   const Vector6 tip_load = tip ? P_.tip_load(R, t) : Vector6::Zero();
@@ -133,7 +133,7 @@ void SemiDiscreteRod::linearise_node(int j, double t, NodeLinearisation& out) co
     const SO3 Rp = R * SO3::exp(kAngle * Vector3::Unit(i));
     const SO3 Rm = R * SO3::exp(-kAngle * Vector3::Unit(i));
     const Vector6 d_applied = (P_.applied_load(Rp, t) - P_.applied_load(Rm, t)) / (2 * kAngle);
-    Vector6 d_load = (P_.gravity_load(Rp) - P_.gravity_load(Rm)) / (2 * kAngle) + d_applied;
+    Vector6 d_load = (node_gravity(j, Rp) - node_gravity(j, Rm)) / (2 * kAngle) + d_applied;
     double d_work = w * d_applied.dot(eta);
     if (tip) {
       const Vector6 d_tip = (P_.tip_load(Rp, t) - P_.tip_load(Rm, t)) / (2 * kAngle);
@@ -222,7 +222,9 @@ void SemiDiscreteRod::analytic_newton_matrix(const Layout& lay, double t, const 
         dforce.rightCols<6>() += nk.eta_velocity;
       }
       // eta_dot = M^-1 (...)
-      const Eigen::Matrix<double, 6, 12> deta_dot = M_.cwiseInverse().asDiagonal() * dforce;
+      const Eigen::Matrix<double, 6, 12> deta_dot =
+          full_inertia_ ? Eigen::Matrix<double, 6, 12>(inertia_inv_[r] * dforce)
+                        : Eigen::Matrix<double, 6, 12>(M_.cwiseInverse().asDiagonal() * dforce);
       block[o].bottomLeftCorner<6, 7>() = deta_dot.leftCols<6>() * E;
       block[o].bottomRightCorner<6, 6>() = deta_dot.rightCols<6>();
     }

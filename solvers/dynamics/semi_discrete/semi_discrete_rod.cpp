@@ -9,6 +9,7 @@
 #include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
 #include "rodlab/rod/characteristics.hpp"
+#include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 
 namespace rodlab::solvers::dynamics {
@@ -22,7 +23,7 @@ constexpr int kColours = 3;
 }  // namespace
 
 SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const std::string& who,
-                                 bool constrained)
+                                 bool constrained, bool corrected_grid)
     : P_(problem), n_(nodes) {
   RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", who);
   RODLAB_THROW_UNLESS(constrained || !problem.is_kirchhoff(),
@@ -71,8 +72,17 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
   seg_len_.assign(seg_weight_.size(), 0.0);
   seg_len0_ = seg_lenc_ = seg_lenc0_ = seg_len_;
   rates_ = lengths_ = xtmp_ = Vector::Zero(m_);
-  if (muscles_) {
+  if (corrected_grid) {
+    require_corrected_grid_rod(problem);  // Cosserat, no actuators
+    if (!clamped_) {
+      tip_cell_ = TipHalfCell::make(model, n_);
+      tip_rest_rotation_ = rod::reference_pose(model, problem.base(), L).rotation();
+    }
+  }
+  full_inertia_ = muscles_ || tip_cell_;
+  if (full_inertia_) {
     inertia_ = problem.node_inertia(n_);
+    if (tip_cell_) inertia_.back() = tip_cell_->M;
     inertia_inv_.resize(n_);
     for (int j = 0; j < n_; ++j) inertia_inv_[j] = inertia_[j].inverse();
   }
@@ -325,14 +335,16 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
     const Vector3 psi = eta.head<3>();
     out[kQ] = -0.5 * qv.dot(psi);
     Eigen::Map<Vector3>(out + kQ + 1) = 0.5 * (qw * psi + qv.cross(psi));
-    if (muscles_) {
+    if (full_inertia_) {
       // M_j eta_dot = ad_eta^T M_j eta + ... with the full node inertia (3.16)-(3.20), and the
-      // muscles' weight at their offsets.
+      // muscles' weight at their offsets; the corrected grid's tip: the half cell's inertia,
+      // its weight at its centre of mass.
       const double s = j * ds_;
       const Vector6 weight =
-          P_.embedded_weight(R, s - 0.5 * ds_, std::min(P_.length(), s + 0.5 * ds_), s);
+          muscles_ ? P_.embedded_weight(R, s - 0.5 * ds_, std::min(P_.length(), s + 0.5 * ds_), s)
+                   : Vector6::Zero();
       const Vector6 rhs = se3::coad_apply(eta, inertia_[j] * eta) +
-                          (inner - moved_[j - 1] + entry) / w + P_.gravity_load(R) + weight +
+                          (inner - moved_[j - 1] + entry) / w + node_gravity(j, R) + weight +
                           applied + drag;
       Eigen::Map<Vector6>(out + kEta) = inertia_inv_[j] * rhs;
     } else {
@@ -599,8 +611,11 @@ void SemiDiscreteRod::fill_newton_matrix(const Layout& lay, double t, const Cons
 
 Energy SemiDiscreteRod::energy(double dissipated, double work_in) const {
   Energy e = staggered_energy(P_, g_, eta_, xi_, ds_,
-                              muscles_ ? std::span<const lie::Matrix6>(inertia_)
-                                       : std::span<const lie::Matrix6>());
+                              full_inertia_ ? std::span<const lie::Matrix6>(inertia_)
+                                            : std::span<const lie::Matrix6>());
+  if (tip_cell_)  // the half cell's weight at its centre of mass (corrected_grid.hpp)
+    e.gravity += tip_cell_->gravity_energy(P_.weight_per_length(), g_.back().rotation(),
+                                           tip_rest_rotation_, ds_);
   e.dissipated = dissipated;
   e.work_in = work_in;
   return e;

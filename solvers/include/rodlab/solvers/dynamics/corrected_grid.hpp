@@ -12,8 +12,9 @@
 //    at s = L is what that offset adds to the kinetic and gravitational energies.
 //
 // On the Table 2.1 cantilever (0.5 s under gravity) `variational` reaches 5.4e-5 m at N = 10
-// where the plain grid reaches 8.2e-4 m. `variational` only so far: the shooting schemes, `ida`
-// and collocation refuse it (their node balance would take the same two terms).
+// where the plain grid reaches 8.2e-4 m. `variational`, and the semi-discrete rod of `ida` and
+// `implicit-midpoint-collocation` (SemiDiscreteRod's corrected_grid); the shooting schemes
+// refuse it (their march would take the same two terms).
 #include <string_view>
 
 #include "rodlab/lie/se3.hpp"
@@ -22,9 +23,12 @@
 namespace rodlab::solvers::dynamics {
 
 /// Throws std::invalid_argument, naming solver.grid, where `scheme` or the scene cannot take
-/// the corrected grid: schemes other than `variational`, Kirchhoff rods (the flexibility is a
-/// shear compliance) and scenes with actuators (their node inertia and loads are not corrected).
+/// the corrected grid: schemes other than `variational`, `ida` and
+/// `implicit-midpoint-collocation`, and require_corrected_grid_rod's.
 void require_corrected_grid(const DynamicProblem& problem, std::string_view scheme);
+/// The same for the rod alone: Kirchhoff rods (the flexibility is a shear compliance) and scenes
+/// with actuators (their node inertia and loads are not corrected).
+void require_corrected_grid_rod(const DynamicProblem& problem);
 
 /// The problem on the corrected grid of `nodes` nodes: its model with the residual bending
 /// flexibility of ds = L / (nodes - 1). The time step `dt: auto` follows from it (the softer

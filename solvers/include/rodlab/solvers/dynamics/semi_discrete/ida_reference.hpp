@@ -57,6 +57,9 @@ struct IdaOptions {
   /// Internal IDA steps per step() call; 0: the budget scales with the interval (below). The
   /// run's wall-time guard (common/deadline.hpp) is checked in every residual evaluation.
   long max_steps = 0;
+  /// The corrected grid (solver.grid: corrected; SemiDiscreteRod's corrected_grid): the problem
+  /// is to carry the grid's model (corrected_grid_problem); Cosserat rods without actuators.
+  bool corrected_grid = false;
 };
 
 /// The step budget of a step() call over `interval` seconds at max_steps = 0:

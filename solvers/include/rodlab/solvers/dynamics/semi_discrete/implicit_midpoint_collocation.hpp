@@ -54,6 +54,8 @@ struct ImplicitMidpointCollocationOptions {
   int jacobian_max_age = 50;  ///< steps a Jacobian is kept at most (0: a
                               ///< fresh one at the start of every step; with
                               ///< max_setup_calls = 1, exact Newton throughout)
+  /// The corrected grid (as IdaOptions::corrected_grid).
+  bool corrected_grid = false;
 };
 
 /// The stepper, with the diagnostics of the scheme beyond Stepper's.

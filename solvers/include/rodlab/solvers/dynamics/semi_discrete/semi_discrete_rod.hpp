@@ -68,6 +68,7 @@
 // at the offset. `ida` carries the muscle lengths as algebraic unknowns after D and W (index 1;
 // consistent initial values are the lengths of the initial poses).
 #include <array>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -76,6 +77,7 @@
 #include <Eigen/SparseCore>
 
 #include "rodlab/result/static_result.hpp"
+#include "rodlab/solvers/dynamics/corrected_grid.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/energy.hpp"
 
@@ -93,9 +95,12 @@ class SemiDiscreteRod {
 
   /// `who` names the scheme in error messages. Throws std::invalid_argument for nodes < 3 and,
   /// unless `constrained`, Kirchhoff rods and length control. The problem must outlive this
-  /// object.
+  /// object. `corrected_grid` (corrected_grid.hpp): the problem is to carry the grid's model
+  /// (corrected_grid_problem), and a free tip's half cell is a rigid body (TipHalfCell: its
+  /// full inertia in the tip's balance, gravity at its centre of mass, both in the energies);
+  /// require_corrected_grid's conditions hold.
   SemiDiscreteRod(const DynamicProblem& problem, int nodes, const std::string& who,
-                  bool constrained = false);
+                  bool constrained = false, bool corrected_grid = false);
 
   const DynamicProblem& problem() const { return P_; }
   int nodes() const { return n_; }
@@ -324,6 +329,12 @@ class SemiDiscreteRod {
   mutable std::vector<Vector6> corr_lambda_, corr_moved_, corr_node_;
   mutable SparseMatrix stab_base_;
 
+  /// Node j's weight per unit length, at the half cell's centre of mass at a corrected tip.
+  Vector6 node_gravity(int j, const SO3& R) const {
+    const Vector6 weight = P_.gravity_load(R);
+    return tip_cell_ && j == n_ - 1 ? tip_cell_->at_centre_of_mass(weight) : weight;
+  }
+
   /// Segment j's strain as the stresses see it (Kirchhoff: nu = nu* of its span).
   Vector6 model_strain(const Vector6& xi, int j) const {
     if (!kirchhoff_) return xi;
@@ -346,7 +357,12 @@ class SemiDiscreteRod {
   std::vector<int> unknown_act_;               ///< actuator index of unknown e
   std::vector<char> is_muscle_;                ///< unknown e is a muscle length
   std::vector<double> rest_, seg_weight_;      ///< rest lengths; overlaps (m x (N - 1))
-  std::vector<lie::Matrix6> inertia_, inertia_inv_;  ///< node inertia densities (muscles)
+  // Node inertia densities where they are not the rod's diagonal M_ (full_inertia_): muscles,
+  // or the corrected grid's tip half cell (tip_cell_).
+  bool full_inertia_ = false;
+  std::vector<lie::Matrix6> inertia_, inertia_inv_;
+  std::optional<TipHalfCell> tip_cell_;
+  SO3 tip_rest_rotation_;  ///< the tip's rest rotation (the half cell's gravitational energy)
   mutable DynamicProblem::Forces F_{};
   mutable std::vector<double> seg_len_, seg_len0_, seg_lenc_, seg_lenc0_;  ///< m x (N - 1)
   mutable Vector rates_, lengths_, xtmp_;
