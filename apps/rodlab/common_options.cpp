@@ -30,8 +30,9 @@ const std::string kAlphaHelp =
 const std::string kGridHelp =
     "the spatial grid: for implicit-midpoint and bdf-alpha euler (explicit Euler RKMK on the "
     "nodes, the thesis) or staggered (the grid of variational and ida, second order); for "
-    "variational staggered or corrected (the staggered grid with its bending and tip "
-    "corrections, about 15x smaller errors on bending modes); default: solver.grid, else " +
+    "variational, ida and implicit-midpoint-collocation staggered or corrected (the staggered "
+    "grid with its bending and tip corrections, about 15x smaller errors on bending modes); "
+    "default: solver.grid, else " +
     std::string(solvers::dynamics::shooting_grid_name(kDefaults.grid));
 const std::string kVariationalStepHelp =
     "variational: its time rule, verlet (Stormer-Verlet, second order) or symplectic-euler (the "
@@ -168,8 +169,7 @@ SolveOptions read_solve_options(OptionReader& reader, Problem problem, std::stri
     if (solvers::dynamics::shooting_grid_from_name(*grid))
       o.grid = *grid;
     else
-      reader.problem("--grid: must be euler or staggered, or corrected for variational (got " +
-                     *grid + ")");
+      reader.problem("--grid: must be euler, staggered or corrected (got " + *grid + ")");
   }
   if (const auto step = reader.text(kVariationalStepOption.name)) {
     if (solvers::dynamics::variational_step_from_name(*step))

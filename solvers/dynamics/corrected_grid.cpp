@@ -7,8 +7,12 @@
 
 namespace rodlab::solvers::dynamics {
 
+bool corrected_grid_scheme(std::string_view scheme) {
+  return scheme == "variational" || scheme == "ida" || scheme == "implicit-midpoint-collocation";
+}
+
 void require_corrected_grid(const DynamicProblem& problem, std::string_view scheme) {
-  if (scheme != "variational" && scheme != "ida" && scheme != "implicit-midpoint-collocation")
+  if (!corrected_grid_scheme(scheme))
     throw std::invalid_argument(
         "solver.grid: corrected is implemented for variational, ida and "
         "implicit-midpoint-collocation so far; use the staggered grid with " +

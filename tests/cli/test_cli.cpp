@@ -373,7 +373,7 @@ BOOST_AUTO_TEST_CASE(dynamic_grid_option) {
   Sandbox box;
   const std::string scene = quote(kScene);
   expect_bad_input(box, "dynamic " + scene + " --scheme implicit-midpoint --grid chebyshev --t-end 0.1 --out a.json",
-                   {"--grid", "euler or staggered", "got chebyshev"});
+                   {"--grid", "euler, staggered or corrected", "got chebyshev"});
   double tip[2] = {0, 0};
   int k = 0;
   for (const char* grid : {"euler", "staggered"}) {

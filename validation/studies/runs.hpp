@@ -26,9 +26,9 @@ struct RunSpec {
   double tol = 1e-10;   ///< nonlinear solver tolerance
   int repeats = 1;      ///< timed repetitions (the result is the same every time)
   bool keep_series = true;  ///< dynamics: keep the tip trajectory (for errors over time)
-  /// The study's reference run: on the staggered grid where the scene sets solver.grid:
-  /// corrected (variational's alone; docs/studies.md "recommend"), so that the corrected grid's
-  /// runs are measured against the converged answer.
+  /// The study's reference run: on the scene's grid, or on the staggered grid where the scene
+  /// sets solver.grid: corrected and the reference scheme does not implement it
+  /// (docs/studies.md "recommend").
   bool reference = false;
 };
 

@@ -34,8 +34,8 @@ std::vector<int> study_nodes(const Settings& settings) {
 
 namespace {
 
-/// The problem `scheme` runs at N nodes on the scene's grid (solver.grid: corrected changes
-/// variational's shear stiffness and with it its automatic step); where the scheme does not
+/// The problem `scheme` runs at N nodes on the scene's grid (solver.grid: corrected changes the
+/// shear stiffness and with it the automatic step); where the scheme does not
 /// take that grid, the scene's own (its runs are refused, and recorded so).
 solvers::dynamics::DynamicProblem study_problem(const Settings& settings, std::string_view scheme,
                                                 int nodes) {

@@ -26,6 +26,9 @@ namespace rodlab::solvers::dynamics {
 /// the corrected grid: schemes other than `variational`, `ida` and
 /// `implicit-midpoint-collocation`, and require_corrected_grid_rod's.
 void require_corrected_grid(const DynamicProblem& problem, std::string_view scheme);
+/// Whether `scheme` implements the corrected grid (variational, ida,
+/// implicit-midpoint-collocation).
+bool corrected_grid_scheme(std::string_view scheme);
 /// The same for the rod alone: Kirchhoff rods (the flexibility is a shear compliance) and scenes
 /// with actuators (their node inertia and loads are not corrected).
 void require_corrected_grid_rod(const DynamicProblem& problem);
