@@ -253,48 +253,53 @@ class Collocation {
       if (extra_)
         for (int k = 0; k < StaticProblem::kMaxActuators; ++k) total[k] += lengths_[i][k];
     }
-    std::vector<double> extra0(extra_), extra1(extra_);
+    std::vector<double> extra0(extra_);
+    extra1_.resize(extra_);
     if (extra_) P_.extra_residuals(total, extra0);
     const Vector6 tip0 = tip_rows(node_[N_ - 1]);
     double* values = J.valuePtr();
     const int* outer = J.outerIndexPtr();
-    Lengths dl{};
+    const FdBase base{total, extra0, tip0};
+    p_columns_.resize(N_ - 1);
+    Column d, dq[3];
     for (int j = 0; j < N_; ++j) {
       const State xj = x.segment<kState>(kState * j);
-      for (int k = 0; k < kState; ++k) {
-        const int column = kState * j + k;
-        double* v = values + outer[column];  // this column's rows, contiguous from first_row(j)
-        State xp = xj;
-        xp[k] += kFdStep * std::max(1.0, std::abs(xj[k]));
-        const double step = xp[k] - xj[k];  // the step actually taken
-        const NodeData np = moved_node(xp, j, k);
-        const bool wrench_column = k >= kFirstWrench;  // the poses, hence the charts, stay
-        Lengths changed = total;
+      auto write = [&](int k) {  // column k of node j: the base rows (exact), then d
+        double* v = values + outer[kState * j + k];  // its rows, contiguous from first_row(j)
         if (j == 0)
           for (int r = 0; r < kBaseRows; ++r) *v++ = r == k ? 1.0 : 0.0;
-        if (j >= 1) {  // interval j-1: node j is its right end
-          const Vector6 Theta = wrench_column ? chart_[j - 1] : chart(node_[j - 1], np);
-          const Rows d = (interval(j - 1, node_[j - 1], np, Theta, extra_ ? &dl : nullptr) - rows_[j - 1]) / step;
-          for (int r = 0; r < kState; ++r) *v++ = d[r];
-          if (extra_)
-            for (int a = 0; a < StaticProblem::kMaxActuators; ++a) changed[a] += dl[a] - lengths_[j - 1][a];
-        }
-        if (j + 1 < N_) {  // interval j: node j is its left end
-          const Vector6 Theta = wrench_column ? chart_[j] : chart(np, node_[j + 1]);
-          const Rows d = (interval(j, np, node_[j + 1], Theta, extra_ ? &dl : nullptr,
-                                   wrench_column ? &end_rate_[j] : nullptr) - rows_[j]) / step;
-          for (int r = 0; r < kState; ++r) *v++ = d[r];
-          if (extra_)
-            for (int a = 0; a < StaticProblem::kMaxActuators; ++a) changed[a] += dl[a] - lengths_[j][a];
-        }
-        if (j == N_ - 1) {
-          const Vector6 d = (tip_rows(np) - tip0) / step;
-          for (int r = 0; r < kTipRows; ++r) *v++ = d[r];
-        }
-        if (extra_) {
-          P_.extra_residuals(changed, extra1);
-          for (int r = 0; r < extra_; ++r) *v++ = (extra1[r] - extra0[r]) / step;
-        }
+        std::copy(d.data(), d.data() + d.size(), v);
+      };
+      // The quaternion: R depends on q / |q| alone, so the rows but |q|^2 - 1 have no radial
+      // derivative, and its four columns are combinations of three tangent ones.
+      const Eigen::Vector4d q = xj.head<4>();
+      const Eigen::Matrix<double, 4, 3> T = quaternion_tangents(q);
+      for (int i = 0; i < 3; ++i) {
+        State xp = xj;
+        xp.head<4>() += kFdStep * T.col(i);
+        differences(j, moved_node(xp, j, 0), false, kFdStep, true, base, dq[i]);
+      }
+      for (int k = 0; k < 4; ++k) {
+        d = T(k, 0) * dq[0] + T(k, 1) * dq[1] + T(k, 2) * dq[2];
+        if (j >= 1) d[kState - 1] = 2.0 * q[k];  // interval j - 1's |q_j|^2 - 1
+        write(k);
+      }
+      // The position: the rows depend on it through R_a^T (p_b - p_a) alone, so an interval's
+      // columns of p_b are those of p_a negated (kept in p_columns_ from node j - 1's).
+      for (int c = 0; c < 3; ++c) {
+        const int k = 4 + c;
+        State xp = xj;
+        xp[k] += kFdStep * std::max(1.0, std::abs(xj[k]));
+        differences(j, moved_node(xp, j, k), false, xp[k] - xj[k], false, base, d);
+        if (j >= 1) d.head<kState>() = -p_columns_[j - 1].col(c);
+        if (j + 1 < N_) p_columns_[j].col(c) = d.segment<kState>(j >= 1 ? kState : 0);
+        write(k);
+      }
+      for (int k = kFirstWrench; k < kState; ++k) {
+        State xp = xj;
+        xp[k] += kFdStep * std::max(1.0, std::abs(xj[k]));
+        differences(j, moved_node(xp, j, k), true, xp[k] - xj[k], true, base, d);
+        write(k);
       }
     }
     if (extra_) {
@@ -313,6 +318,72 @@ class Collocation {
       }
       set_extra(x);
     }
+  }
+
+  /// A Jacobian column's entries below the base rows (at most two intervals, the tip rows, the
+  /// extra rows), with no allocation.
+  using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0,
+                               2 * kState + kTipRows + StaticProblem::kMaxActuators, 1>;
+  /// What the columns are differenced against: the path lengths, extra rows and tip rows at x.
+  struct FdBase {
+    const Lengths& total;
+    const std::vector<double>& extra0;
+    const Vector6& tip0;
+  };
+
+  /// The forward differences (F(x + step e) - F(x)) / step of the rows node j enters below the
+  /// base rows (interval j - 1, interval j, the tip rows, the extra rows), node j's data moved to
+  /// np; `before` false leaves interval j - 1's rows to the caller (a position column, whose
+  /// path lengths do not change). A wrench column keeps the intervals' charts.
+  void differences(int j, const NodeData& np, bool wrench_column, double step, bool before,
+                   const FdBase& base, Column& d) {
+    d.resize((j >= 1 ? kState : 0) + (j + 1 < N_ ? kState : 0) + (j == N_ - 1 ? kTipRows : 0) +
+             extra_);
+    Lengths changed = base.total, dl{};
+    int at = 0;
+    if (j >= 1) {  // interval j - 1: node j is its right end
+      if (before) {
+        const Vector6 Theta = wrench_column ? chart_[j - 1] : chart(node_[j - 1], np);
+        d.segment<kState>(at) =
+            (interval(j - 1, node_[j - 1], np, Theta, extra_ ? &dl : nullptr) - rows_[j - 1]) /
+            step;
+        if (extra_)
+          for (int a = 0; a < StaticProblem::kMaxActuators; ++a)
+            changed[a] += dl[a] - lengths_[j - 1][a];
+      }
+      at += kState;
+    }
+    if (j + 1 < N_) {  // interval j: node j is its left end
+      const Vector6 Theta = wrench_column ? chart_[j] : chart(np, node_[j + 1]);
+      d.segment<kState>(at) = (interval(j, np, node_[j + 1], Theta, extra_ ? &dl : nullptr,
+                                        wrench_column ? &end_rate_[j] : nullptr) -
+                               rows_[j]) /
+                              step;
+      if (extra_)
+        for (int a = 0; a < StaticProblem::kMaxActuators; ++a) changed[a] += dl[a] - lengths_[j][a];
+      at += kState;
+    }
+    if (j == N_ - 1) {
+      d.segment<kTipRows>(at) = (tip_rows(np) - base.tip0) / step;
+      at += kTipRows;
+    }
+    if (extra_) {
+      P_.extra_residuals(changed, extra1_);
+      for (int r = 0; r < extra_; ++r) d[at + r] = (extra1_[r] - base.extra0[r]) / step;
+    }
+  }
+
+  /// An orthonormal basis of the tangent space at q / |q| of the unit quaternions, [w x y z]
+  /// columns: (q / |q|) (x) [0; e_i] = [-v_i; w e_i + v x e_i].
+  static Eigen::Matrix<double, 4, 3> quaternion_tangents(const Eigen::Vector4d& q) {
+    const Eigen::Vector4d u = q.normalized();
+    const Vector3 v = u.tail<3>();
+    Eigen::Matrix<double, 4, 3> T;
+    for (int i = 0; i < 3; ++i) {
+      T(0, i) = -v[i];
+      T.block<3, 1>(1, i) = u[0] * Vector3::Unit(i) + v.cross(Vector3::Unit(i));
+    }
+    return T;
   }
 
   /// The reference configuration g(s) = base exp(s xi*) with, for a free tip, the undeformed
@@ -466,6 +537,8 @@ class Collocation {
   std::vector<Vector6> chart_;  // workspace: interval charts Theta at the current x
   std::vector<Vector6> end_rate_;  // workspace: their end_rate at the current x
   std::vector<Lengths> lengths_;  // workspace: interval path-length quadratures at the current x
+  std::vector<Eigen::Matrix<double, kState, 3>> p_columns_;  // workspace: interval i's rows' d/dp_a
+  std::vector<double> extra1_;  // workspace: the extra rows of a moved column
 };
 
 /// KINSOL with KLU for the collocation's pattern, kept on this thread from one solve to the next
