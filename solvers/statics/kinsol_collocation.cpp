@@ -554,7 +554,9 @@ class ThreadSolver {
  public:
   explicit ThreadSolver(const Collocation& C) {
     Slot& slot = this_thread_slot();
-    auto make = [&C] { return std::make_unique<KinsolSolver>(C.pattern(), KluReuse::analysis, KluOrder::natural); };
+    auto make = [&C] {
+      return std::make_unique<KinsolSolver>(C.pattern(), KluReuse::analysis, KluOrder::natural);
+    };
     if (slot.in_use) {
       own_ = make();
       solver_ = own_.get();

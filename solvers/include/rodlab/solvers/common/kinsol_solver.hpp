@@ -107,8 +107,9 @@ class KinsolSolver {
   /// KINSOL memory is created afresh by every solve(), so there is none to copy.
   KinsolSolver(const KinsolSolver& other);
   KinsolSolver& operator=(const KinsolSolver&) = delete;
-  /// Makes this solver's state that of `other`, a solver of the same pattern and KluReuse: the vectors (N_VScale) and matrix values (copied into this solver's own), and the kept
-  /// KLU analysis and factors (into its arrays when they fit, which is the steady state of a
+  /// Makes this solver's state that of `other`, a solver of the same pattern and KluReuse: the
+  /// vectors (N_VScale) and matrix values (copied into this solver's own), and the kept KLU
+  /// analysis and factors (into its arrays when they fit, which is the steady state of a
   /// snapshot that is saved and restored: no allocation). Throws std::invalid_argument for
   /// another size or mode.
   void assign(const KinsolSolver& other);
