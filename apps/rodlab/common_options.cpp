@@ -30,8 +30,8 @@ const std::string kAlphaHelp =
 const std::string kGridHelp =
     "the spatial grid: for implicit-midpoint and bdf-alpha euler (explicit Euler RKMK on the "
     "nodes, the thesis) or staggered (the grid of variational and ida, second order); for "
-    "variational, ida and implicit-midpoint-collocation staggered or corrected (the staggered "
-    "grid with its bending and tip corrections, about 15x smaller errors on bending modes); "
+    "every dynamics scheme staggered or corrected (the staggered grid with its bending and tip "
+    "corrections, about 15x smaller errors on bending modes; Cosserat rods without actuators); "
     "default: solver.grid, else " +
     std::string(solvers::dynamics::shooting_grid_name(kDefaults.grid));
 const std::string kVariationalStepHelp =

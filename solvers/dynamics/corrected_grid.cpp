@@ -8,14 +8,16 @@
 namespace rodlab::solvers::dynamics {
 
 bool corrected_grid_scheme(std::string_view scheme) {
-  return scheme == "variational" || scheme == "ida" || scheme == "implicit-midpoint-collocation";
+  return scheme == "variational" || scheme == "ida" || scheme == "implicit-midpoint-collocation" ||
+         scheme == "implicit-midpoint" || scheme == "bdf-alpha";
 }
 
 void require_corrected_grid(const DynamicProblem& problem, std::string_view scheme) {
   if (!corrected_grid_scheme(scheme))
     throw std::invalid_argument(
-        "solver.grid: corrected is implemented for variational, ida and "
-        "implicit-midpoint-collocation so far; use the staggered grid with " +
+        "solver.grid: corrected is implemented for variational, ida, "
+        "implicit-midpoint-collocation, implicit-midpoint and bdf-alpha; use the staggered grid "
+        "with " +
         std::string(scheme));
   require_corrected_grid_rod(problem);
 }

@@ -416,11 +416,6 @@ BOOST_AUTO_TEST_CASE(dynamic_corrected_grid_option) {
   // (the run takes t_end / ceil(t_end / auto): auto in [dt, dt / (1 - dt / t_end)))
   BOOST_TEST(dt[1] <= reported * (1 + 1e-12));
   BOOST_TEST(reported < dt[1] / (1.0 - dt[1] / 0.05));
-  // (ida and collocation take the grid: test_corrected_grid.cpp)
-  for (const char* scheme : {"implicit-midpoint", "bdf-alpha"})
-    expect_bad_input(box, "dynamic " + scene + " --scheme " + scheme +
-                              " --grid corrected --t-end 0.01 --out a.json",
-                     {"solver.grid", "corrected", scheme});
   expect_bad_input(box, "dynamic " + scene + " --grid corrected --set rod.model=kirchhoff "
                         "--t-end 0.01 --out a.json",
                    {"solver.grid", "cosserat"});

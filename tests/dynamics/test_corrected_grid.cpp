@@ -168,8 +168,7 @@ BOOST_AUTO_TEST_CASE(corrected_grid_is_ten_times_closer_on_the_cantilever) {
   }
 }
 
-// Where the corrected grid does not apply, the run is refused naming solver.grid: the shooting
-// schemes, a Kirchhoff rod.
+// Every dynamics scheme takes the corrected grid; a Kirchhoff rod is refused naming solver.grid.
 BOOST_AUTO_TEST_CASE(refused_where_not_derived) {
   d::DynamicSolveOptions o;
   o.nodes = 6;
@@ -186,32 +185,34 @@ BOOST_AUTO_TEST_CASE(refused_where_not_derived) {
     return false;
   };
   const auto cosserat = rod_scene(kGravity, "{}");
-  for (const char* scheme : {"implicit-midpoint", "bdf-alpha"})
-    BOOST_TEST(refused(cosserat, scheme), scheme);
-  for (const char* scheme : {"variational", "ida", "implicit-midpoint-collocation"}) {
+  for (const char* scheme : {"variational", "ida", "implicit-midpoint-collocation",
+                             "implicit-midpoint", "bdf-alpha"}) {
     BOOST_TEST(refused(rod_scene(kGravity, "{}", 0.0, "kirchhoff"), scheme), scheme);
     BOOST_TEST(!refused(cosserat, scheme), scheme);
   }
 }
 
-// ida and implicit-midpoint-collocation on the corrected grid (SemiDiscreteRod's corrected_grid)
-// integrate the equations that `variational` steps, so at equal N the three differ only in time:
+// ida, implicit-midpoint-collocation (SemiDiscreteRod's corrected_grid) and the staggered
+// shooting march on the corrected grid integrate the equations that `variational` steps, so at
+// equal N they differ only in time:
 // N = 10, 0.05 s of the undamped release under gravity, against ida at rtol = atol = 1e-12 on
 // the same grid. Measured: variational (Verlet) 2.47e-9, 6.29e-10 m at dt = 2e-5, 1e-5 s (order
 // 1.97), where ida on the staggered grid is a grid's difference away (7.5e-5 m);
 // implicit-midpoint-collocation 1.14e-5, 2.84e-6 m at dt = 1e-3, 5e-4 s (order 2.00); ida's
 // ledger, with the tip's rigid-body terms, constant to 3.6e-13 of max |gravity energy|.
 BOOST_AUTO_TEST_CASE(semi_discrete_schemes_integrate_the_same_corrected_grid) {
-  const auto scene = rod_scene(kGravity, "{}");
+  const auto undamped = rod_scene(kGravity, "{}"), viscous = rod_scene(kGravity, "{}", 300.0);
+  const auto* scene = &undamped;
+  double t_end = 0.05;
   auto tip = [&](const char* scheme, d::ShootingGrid grid, double dt, double* drift = nullptr) {
     d::DynamicSolveOptions o;
     o.scheme = scheme;
     o.nodes = 10;
     o.grid = grid;
-    o.t_end = 0.05;
+    o.t_end = t_end;
     o.dt = dt;
     o.rtol = o.atol = 1e-12;
-    const auto r = d::solve_dynamic(scene, o);
+    const auto r = d::solve_dynamic(*scene, o);
     BOOST_REQUIRE_MESSAGE(r.converged, r.reason);
     if (drift) {
       double g_max = 0.0;
@@ -224,22 +225,30 @@ BOOST_AUTO_TEST_CASE(semi_discrete_schemes_integrate_the_same_corrected_grid) {
   };
   const auto corrected = d::ShootingGrid::corrected;
   double drift = 1.0;
-  const lie::Vector3 ida = tip("ida", corrected, 0.05 / 3, &drift);
+  lie::Vector3 ida = tip("ida", corrected, 0.05 / 3, &drift);
   const lie::Vector3 ida_staggered = tip("ida", d::ShootingGrid::staggered, 0.05 / 3);
   BOOST_TEST_MESSAGE("ida, corrected grid: ledger drift " << drift << " of max |gravity energy|");
   BOOST_TEST(drift <= 1e-10);
-  auto order = [&](const char* scheme, double dt, double max_error) {
+  auto order = [&](const char* scheme, double dt, double max_error, double order_tol = 0.1) {
     const double e1 = (tip(scheme, corrected, dt) - ida).cwiseAbs().maxCoeff();
     const double e2 = (tip(scheme, corrected, dt / 2) - ida).cwiseAbs().maxCoeff();
     const double p = std::log(e1 / e2) / std::log(2.0);
     BOOST_TEST_MESSAGE(scheme << " against ida, corrected grid: " << e1 << ", " << e2
                               << " m at dt = " << dt << ", " << dt / 2 << " s (order " << p << ")");
     BOOST_TEST(e1 <= max_error);
-    BOOST_TEST(std::abs(p - 2.0) <= 0.1);
+    BOOST_TEST(std::abs(p - 2.0) <= order_tol);
   };
   order("variational", 2e-5, 5e-9);
   order("implicit-midpoint-collocation", 1e-3, 3e-5);
   const double grids = (tip("variational", corrected, 1e-5) - ida_staggered).cwiseAbs().maxCoeff();
   BOOST_TEST_MESSAGE("variational, corrected grid, against ida on the staggered grid: " << grids);
   BOOST_TEST(grids >= 1e-5);
+  // The shooting march, on the viscous cantilever (300 Pa s) to 0.048 s, where single shooting
+  // converges from the release: 2.00e-5, 4.41e-6 m at dt = 4, 2 ms (order 2.18; the staggered
+  // grid 2.01e-5, 4.70e-6, order 2.10, docs/dynamics.md). Pre-asymptotic, and 1 ms is below the
+  // lower step bound here (the softer shear raises it), hence the wider band.
+  scene = &viscous;
+  t_end = 0.048;
+  ida = tip("ida", corrected, 0.048 / 3);
+  order("implicit-midpoint", 4e-3, 3e-5, 0.25);
 }

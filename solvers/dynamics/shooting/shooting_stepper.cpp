@@ -1,6 +1,5 @@
 #include "rodlab/solvers/dynamics/shooting/shooting_stepper.hpp"
 
-#include "rodlab/solvers/dynamics/corrected_grid.hpp"
 #include "rodlab/solvers/dynamics/shooting/bdf_alpha.hpp"
 #include "rodlab/solvers/dynamics/shooting/implicit_midpoint.hpp"
 
@@ -360,9 +359,7 @@ std::unique_ptr<Stepper> make_shooting_stepper(const DynamicProblem& problem,
                                                const RestState& initial,
                                                std::unique_ptr<TimeRule> rule) {
   if (!rule) throw std::invalid_argument("shooting stepper: no time rule");
-  if (options.grid == ShootingGrid::corrected)
-    require_corrected_grid(problem, "implicit-midpoint and bdf-alpha");
-  if (options.grid == ShootingGrid::staggered)
+  if (options.grid != ShootingGrid::euler)  // staggered, or corrected (the same march)
     return make_staggered_shooting_stepper(problem, options, initial, std::move(rule));
   return std::make_unique<ShootingStepper>(problem, options, initial, std::move(rule));
 }

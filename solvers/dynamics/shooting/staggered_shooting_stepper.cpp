@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -11,6 +12,8 @@
 
 #include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
+#include "rodlab/rod/energies.hpp"
+#include "rodlab/solvers/dynamics/corrected_grid.hpp"
 #include "../../common/cloned.hpp"
 #include "../staggered_paths.hpp"
 #include "../tangent_state.hpp"
@@ -42,7 +45,9 @@ class StaggeredShootingStepper final : public Stepper {
   StaggeredShootingStepper(const DynamicProblem& problem, const ShootingOptions& options,
                            const RestState& initial, std::unique_ptr<TimeRule> rule)
       : P_(problem), opt_(options), rule_(std::move(rule)), n_(options.nodes),
-        ds_(problem.length() / (n_ - 1)), name_(std::string(rule_->name()) + " (grid staggered)"),
+        ds_(problem.length() / (n_ - 1)),
+        name_(std::string(rule_->name()) + " (grid " +
+              std::string(shooting_grid_name(options.grid)) + ")"),
         tangent_(n_, problem.model()) {
     RODLAB_THROW_UNLESS(n_ >= 3, "{}: nodes must be >= 3", name_);
     problem.model().require_spans_on_grid(n_, rule_->name());
@@ -84,7 +89,7 @@ class StaggeredShootingStepper final : public Stepper {
       plain_.start(x0);
     else
       setup_unknowns(x0);
-    muscles_ = problem.has_muscles();
+    muscles_ = full_inertia_ = problem.has_muscles();
     if (muscles_) {
       // the full node inertia and, at the segments' midpoints, the embedded stiffness and
       // viscosity (as SemiDiscreteRod)
@@ -98,7 +103,21 @@ class StaggeredShootingStepper final : public Stepper {
         V_emb_[j] = problem.embedded_viscosity((j + 0.5) * ds_);
       }
     }
+    if (options.grid == ShootingGrid::corrected) use_corrected_grid();
     if (initial.equilibrium) settle();
+  }
+
+  /// The corrected grid (corrected_grid.hpp; the problem carries its model): a free tip's half
+  /// cell as a rigid body, its full inertia and its weight at the centre of mass in the tip's
+  /// balance, both in the energies (as SemiDiscreteRod).
+  void use_corrected_grid() {
+    require_corrected_grid_rod(P_);  // Cosserat, no actuators
+    if (clamped_) return;
+    tip_cell_ = std::make_shared<const TipHalfCell>(TipHalfCell::make(P_.model(), n_));
+    tip_rest_rotation_ = rod::reference_pose(P_.model(), P_.base(), P_.length()).rotation();
+    inertia_ = P_.node_inertia(n_);
+    inertia_.back() = tip_cell_->M;
+    full_inertia_ = true;
   }
 
   StepStatus step(double t, double dt) override { return take_step(t, dt, nullptr, nullptr); }
@@ -106,11 +125,14 @@ class StaggeredShootingStepper final : public Stepper {
   // The tangent-linear step: the shooting's own converged equations differentiated (below);
   // muscles, length control and a clamped tip are not covered (their extra unknowns and clamp
   // rows would need their own rows): controllers difference whole steps there.
-  bool has_step_linearisation() const override { return m_ == 0 && !muscles_ && !clamped_; }
+  bool has_step_linearisation() const override {
+    return m_ == 0 && !muscles_ && !clamped_ && !tip_cell_;
+  }
 
   StepStatus step_linearised(double t, double dt, Eigen::MatrixXd& A, Eigen::MatrixXd& B) override {
     if (!has_step_linearisation())
-      throw unsupported("step_linearised with muscles, length control or a clamped tip");
+      throw unsupported(
+          "step_linearised with muscles, length control, a clamped tip or the corrected grid");
     return take_step(t, dt, &A, &B);
   }
 
@@ -162,8 +184,11 @@ class StaggeredShootingStepper final : public Stepper {
 
   Energy energy() const override {
     Energy e = staggered_energy(P_, g_, eta_, xi_, ds_,
-                                muscles_ ? std::span<const lie::Matrix6>(inertia_)
-                                         : std::span<const lie::Matrix6>());
+                                full_inertia_ ? std::span<const lie::Matrix6>(inertia_)
+                                              : std::span<const lie::Matrix6>());
+    if (tip_cell_)  // the half cell's weight at its centre of mass (corrected_grid.hpp)
+      e.gravity += tip_cell_->gravity_energy(P_.weight_per_length(), g_.back().rotation(),
+                                             tip_rest_rotation_, ds_);
     e.dissipated = ledger_.dissipated;
     e.work_in = ledger_.work_in;
     return e;
@@ -273,16 +298,8 @@ class StaggeredShootingStepper final : public Stepper {
     const double w = tip ? 0.5 * ds_ : ds_;
     const SO3& R = out.g.rotation();
     const Vector6 applied = P_.applied_load(R, t_u_), drag = P_.drag_load(eta);
-    if (muscles_) {
-      // the full node inertia and the muscles' weight on the node's cell (3.16)-(3.20)
-      const double s = k * ds_;
-      const Vector6 Meta = inertia_[k] * eta;
-      out.lambda_pre =
-          lambda_moved +
-          w * (inertia_[k] * (c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, Meta) -
-               P_.gravity_load(R) -
-               P_.embedded_weight(R, s - 0.5 * ds_, std::min(P_.length(), s + 0.5 * ds_), s) -
-               applied - drag);
+    if (full_inertia_) {
+      out.lambda_pre = lambda_moved + w * (full_inertia_balance(k, R, eta) - applied - drag);
     } else {
       const Vector6 Meta = M.cwiseProduct(eta);
       out.lambda_pre = lambda_moved +
@@ -299,6 +316,22 @@ class StaggeredShootingStepper final : public Stepper {
       out.lambda_pre -= entry;
     }
     return out;
+  }
+
+  /// Node k's balance per unit length with its full inertia, less the applied load and drag
+  /// (march_segment's): the muscles' weight on the node's cell (3.16)-(3.20); the corrected
+  /// grid's tip: the half cell's inertia, its weight at its centre of mass. Out of line, as a
+  /// rarely taken branch of march_segment.
+  [[gnu::noinline]] Vector6 full_inertia_balance(int k, const SO3& R, const Vector6& eta) const {
+    const double s = k * ds_;
+    const Vector6 weight =
+        muscles_ ? P_.embedded_weight(R, s - 0.5 * ds_, std::min(P_.length(), s + 0.5 * ds_), s)
+                 : Vector6::Zero();
+    const Vector6 gravity = k == n_ - 1 && tip_cell_
+                                ? tip_cell_->at_centre_of_mass(P_.gravity_load(R))
+                                : P_.gravity_load(R);
+    return inertia_[k] * (c_ * eta + eta_hist_[k]) - se3::coad_apply(eta, inertia_[k] * eta) -
+           gravity - weight;
   }
 
   /// The march from the base with lambda_0 = x * scale (header); returns the scaled tip
@@ -569,8 +602,10 @@ class StaggeredShootingStepper final : public Stepper {
   /// the guess X0, accelerated by Phi's first-order derivative (below): the iteration then
   /// contracts with ratio ~ (ds |lambda| / (2 E I))^2 + |X| ds |lambda| / (2 E I); where it does not
   /// (far from the solution, in early Newton iterates of the shooting), Newton with a
-  /// finite-difference Jacobian of Phi takes over. A failure leaves inner_failed_ set.
-  Vector6 segment_twist(int j, const Vector6& lambda_pre, const Vector6& X0, Vector6& lambda) {
+  /// finite-difference Jacobian of Phi takes over. A failure leaves inner_failed_ set. Out of
+  /// line: inlined into march_segment, GCC put SE3's product out of line and the step lost 5 %.
+  [[gnu::noinline]] Vector6 segment_twist(int j, const Vector6& lambda_pre, const Vector6& X0,
+                                          Vector6& lambda) {
     const double s_mid = (j + 0.5) * ds_;
     auto phi = [&](const Vector6& X, Vector6& lam) {
       lam = entry_at_[j] ? Vector6(lambda_pre - entry_loads(j, X / ds_)) : lambda_pre;
@@ -677,6 +712,11 @@ class StaggeredShootingStepper final : public Stepper {
   StaggeredPaths paths_;  ///< the unknowns' path lengths and rest lengths
   std::vector<Vector6> xi_end_;
   std::vector<Matrix6> inertia_, K_emb_, V_emb_, Kt_full_, Kt_accel_;
+  // Node inertia densities other than the rod's diagonal M (full_inertia_): muscles, or the
+  // corrected grid's free tip (tip_cell_, with the tip's rest rotation for its energy).
+  bool full_inertia_ = false;
+  std::shared_ptr<const TipHalfCell> tip_cell_;  // shared by the stepper's copies (snapshots)
+  SO3 tip_rest_rotation_;
   long steps_ = 0;
   Energy ledger_;
 };

@@ -12,9 +12,9 @@
 //    at s = L is what that offset adds to the kinetic and gravitational energies.
 //
 // On the Table 2.1 cantilever (0.5 s under gravity) `variational` reaches 5.4e-5 m at N = 10
-// where the plain grid reaches 8.2e-4 m. `variational`, and the semi-discrete rod of `ida` and
-// `implicit-midpoint-collocation` (SemiDiscreteRod's corrected_grid); the shooting schemes
-// refuse it (their march would take the same two terms).
+// where the plain grid reaches 8.2e-4 m. Every dynamics scheme takes it: `variational`, the
+// semi-discrete rod of `ida` and `implicit-midpoint-collocation` (SemiDiscreteRod's
+// corrected_grid) and the staggered shooting march of `implicit-midpoint` and `bdf-alpha`.
 #include <string_view>
 
 #include "rodlab/lie/se3.hpp"
@@ -23,11 +23,9 @@
 namespace rodlab::solvers::dynamics {
 
 /// Throws std::invalid_argument, naming solver.grid, where `scheme` or the scene cannot take
-/// the corrected grid: schemes other than `variational`, `ida` and
-/// `implicit-midpoint-collocation`, and require_corrected_grid_rod's.
+/// the corrected grid: a scheme without it (corrected_grid_scheme), and require_corrected_grid_rod's.
 void require_corrected_grid(const DynamicProblem& problem, std::string_view scheme);
-/// Whether `scheme` implements the corrected grid (variational, ida,
-/// implicit-midpoint-collocation).
+/// Whether `scheme` implements the corrected grid (every dynamics scheme).
 bool corrected_grid_scheme(std::string_view scheme);
 /// The same for the rod alone: Kirchhoff rods (the flexibility is a shear compliance) and scenes
 /// with actuators (their node inertia and loads are not corrected).

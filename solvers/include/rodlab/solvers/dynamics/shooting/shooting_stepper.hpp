@@ -36,8 +36,7 @@ namespace rodlab::solvers::dynamics {
 enum class ShootingGrid {
   euler,      ///< nodes, explicit Euler RKMK (the thesis' Algorithm 2)
   staggered,  ///< nodes and segments of `variational` / `ida` (staggered_shooting_stepper.hpp)
-  /// the staggered grid with its two O(ds^2) corrections (corrected_grid.hpp); `variational`
-  /// only so far: the shooting steppers refuse it
+  /// the staggered grid with its two O(ds^2) corrections (corrected_grid.hpp), every scheme's
   corrected
 };
 /// "euler" / "staggered" / "corrected".
