@@ -23,7 +23,8 @@
 namespace rodlab::solvers::dynamics {
 
 /// Throws std::invalid_argument, naming solver.grid, where `scheme` or the scene cannot take
-/// the corrected grid: a scheme without it (corrected_grid_scheme), and require_corrected_grid_rod's.
+/// the corrected grid: a scheme without it (corrected_grid_scheme), and
+/// require_corrected_grid_rod's.
 void require_corrected_grid(const DynamicProblem& problem, std::string_view scheme);
 /// Whether `scheme` implements the corrected grid (every dynamics scheme).
 bool corrected_grid_scheme(std::string_view scheme);
