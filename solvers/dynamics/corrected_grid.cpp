@@ -4,25 +4,11 @@
 #include <string>
 
 #include "rodlab/lie/so3.hpp"
+#include "rodlab/rod/energies.hpp"
 
 namespace rodlab::solvers::dynamics {
 
-bool corrected_grid_scheme(std::string_view scheme) {
-  return scheme == "variational" || scheme == "ida" || scheme == "implicit-midpoint-collocation" ||
-         scheme == "implicit-midpoint" || scheme == "bdf-alpha";
-}
-
-void require_corrected_grid(const DynamicProblem& problem, std::string_view scheme) {
-  if (!corrected_grid_scheme(scheme))
-    throw std::invalid_argument(
-        "solver.grid: corrected is implemented for variational, ida, "
-        "implicit-midpoint-collocation, implicit-midpoint and bdf-alpha; use the staggered grid "
-        "with " +
-        std::string(scheme));
-  require_corrected_grid_rod(problem);
-}
-
-void require_corrected_grid_rod(const DynamicProblem& problem) {
+void require_corrected_grid(const DynamicProblem& problem) {
   if (problem.is_kirchhoff())
     throw std::invalid_argument(
         "solver.grid: corrected needs rod.model cosserat (its bending correction is a shear "
@@ -36,6 +22,14 @@ void require_corrected_grid_rod(const DynamicProblem& problem) {
 DynamicProblem corrected_grid_problem(const DynamicProblem& problem, int nodes) {
   return problem.with_model(
       problem.model().with_residual_bending_flexibility(problem.length() / (nodes - 1)));
+}
+
+std::optional<TipHalfCell> TipHalfCell::of(const DynamicProblem& problem, int nodes) {
+  if (problem.tip_clamped()) return std::nullopt;
+  TipHalfCell cell = make(problem.model(), nodes);
+  cell.rest_rotation =
+      rod::reference_pose(problem.model(), problem.base(), problem.length()).rotation();
+  return cell;
 }
 
 TipHalfCell TipHalfCell::make(const rod::RodModel& model, int nodes) {

@@ -109,7 +109,7 @@ void apply_scene_options(const scene::Scene& scene, DynamicSolveOptions& options
 
 DynamicProblem problem_on_grid(DynamicProblem problem, const DynamicSolveOptions& options) {
   if (options.grid != ShootingGrid::corrected) return problem;
-  require_corrected_grid(problem, options.scheme);
+  require_corrected_grid(problem);
   return corrected_grid_problem(problem, options.nodes);
 }
 

@@ -4,7 +4,6 @@
 #include <exception>
 #include <limits>
 
-#include "rodlab/solvers/dynamics/corrected_grid.hpp"
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/statics/solve_static.hpp"
 
@@ -47,9 +46,6 @@ void run_dynamic(const scene::Scene& scene, const RunSpec& spec, RunRecord& out,
   options.tol = spec.tol;
   options.max_iterations = std::max(scene.solver.max_iterations, 50);
   solvers::dynamics::apply_scene_options(scene, options);  // as `rodlab dynamic`
-  if (spec.reference && options.grid == solvers::dynamics::ShootingGrid::corrected &&
-      !solvers::dynamics::corrected_grid_scheme(spec.scheme))
-    options.grid = solvers::dynamics::ShootingGrid::staggered;
   for (int r = 0; r < std::max(1, spec.repeats); ++r) {
     auto result = solvers::dynamics::solve_dynamic(scene, options);
     times.push_back(result.wall_time_s);

@@ -26,9 +26,7 @@ struct RunSpec {
   double tol = 1e-10;   ///< nonlinear solver tolerance
   int repeats = 1;      ///< timed repetitions (the result is the same every time)
   bool keep_series = true;  ///< dynamics: keep the tip trajectory (for errors over time)
-  /// The study's reference run: on the scene's grid, or on the staggered grid where the scene
-  /// sets solver.grid: corrected and the reference scheme does not implement it
-  /// (docs/studies.md "recommend").
+  /// The study's reference run (docs/studies.md "recommend"); on the scene's grid, as every run.
   bool reference = false;
 };
 

@@ -9,7 +9,6 @@
 #include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
 #include "rodlab/rod/characteristics.hpp"
-#include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 
 namespace rodlab::solvers::dynamics {
@@ -73,11 +72,8 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
   seg_len0_ = seg_lenc_ = seg_lenc0_ = seg_len_;
   rates_ = lengths_ = xtmp_ = Vector::Zero(m_);
   if (corrected_grid) {
-    require_corrected_grid_rod(problem);  // Cosserat, no actuators
-    if (!clamped_) {
-      tip_cell_ = TipHalfCell::make(model, n_);
-      tip_rest_rotation_ = rod::reference_pose(model, problem.base(), L).rotation();
-    }
+    require_corrected_grid(problem);  // Cosserat, no actuators
+    tip_cell_ = TipHalfCell::of(problem, n_);
   }
   full_inertia_ = muscles_ || tip_cell_;
   if (full_inertia_) {
@@ -614,8 +610,7 @@ Energy SemiDiscreteRod::energy(double dissipated, double work_in) const {
                               full_inertia_ ? std::span<const lie::Matrix6>(inertia_)
                                             : std::span<const lie::Matrix6>());
   if (tip_cell_)  // the half cell's weight at its centre of mass (corrected_grid.hpp)
-    e.gravity += tip_cell_->gravity_energy(P_.weight_per_length(), g_.back().rotation(),
-                                           tip_rest_rotation_, ds_);
+    e.gravity += tip_cell_->gravity_energy(P_.weight_per_length(), g_.back().rotation(), ds_);
   e.dissipated = dissipated;
   e.work_in = work_in;
   return e;

@@ -12,7 +12,6 @@
 
 #include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
-#include "rodlab/rod/energies.hpp"
 #include "rodlab/solvers/dynamics/corrected_grid.hpp"
 #include "../../common/cloned.hpp"
 #include "../staggered_paths.hpp"
@@ -111,10 +110,10 @@ class StaggeredShootingStepper final : public Stepper {
   /// cell as a rigid body, its full inertia and its weight at the centre of mass in the tip's
   /// balance, both in the energies (as SemiDiscreteRod).
   void use_corrected_grid() {
-    require_corrected_grid_rod(P_);  // Cosserat, no actuators
-    if (clamped_) return;
-    tip_cell_ = std::make_shared<const TipHalfCell>(TipHalfCell::make(P_.model(), n_));
-    tip_rest_rotation_ = rod::reference_pose(P_.model(), P_.base(), P_.length()).rotation();
+    require_corrected_grid(P_);  // Cosserat, no actuators
+    const auto cell = TipHalfCell::of(P_, n_);
+    if (!cell) return;  // a clamped tip
+    tip_cell_ = std::make_shared<const TipHalfCell>(*cell);
     inertia_ = P_.node_inertia(n_);
     inertia_.back() = tip_cell_->M;
     full_inertia_ = true;
@@ -187,8 +186,7 @@ class StaggeredShootingStepper final : public Stepper {
                                 full_inertia_ ? std::span<const lie::Matrix6>(inertia_)
                                               : std::span<const lie::Matrix6>());
     if (tip_cell_)  // the half cell's weight at its centre of mass (corrected_grid.hpp)
-      e.gravity += tip_cell_->gravity_energy(P_.weight_per_length(), g_.back().rotation(),
-                                             tip_rest_rotation_, ds_);
+      e.gravity += tip_cell_->gravity_energy(P_.weight_per_length(), g_.back().rotation(), ds_);
     e.dissipated = ledger_.dissipated;
     e.work_in = ledger_.work_in;
     return e;
@@ -713,10 +711,9 @@ class StaggeredShootingStepper final : public Stepper {
   std::vector<Vector6> xi_end_;
   std::vector<Matrix6> inertia_, K_emb_, V_emb_, Kt_full_, Kt_accel_;
   // Node inertia densities other than the rod's diagonal M (full_inertia_): muscles, or the
-  // corrected grid's free tip (tip_cell_, with the tip's rest rotation for its energy).
+  // corrected grid's free tip (tip_cell_).
   bool full_inertia_ = false;
   std::shared_ptr<const TipHalfCell> tip_cell_;  // shared by the stepper's copies (snapshots)
-  SO3 tip_rest_rotation_;
   long steps_ = 0;
   Energy ledger_;
 };

@@ -87,12 +87,8 @@ class Variational final : public Stepper {
     const Vector6 M = problem.model().M_diag();
     legendre_ = {M, M.cwiseInverse(), options.tol, options.max_iterations};
     if (options.corrected_grid) {
-      require_corrected_grid(problem, "variational");  // Cosserat, no actuators
-      if (!clamped_) {
-        tip_cell_ = TipHalfCell::make(problem.model(), n_);
-        tip_rest_rotation_ =
-            rod::reference_pose(problem.model(), problem.base(), problem.length()).rotation();
-      }
+      require_corrected_grid(problem);  // Cosserat, no actuators
+      tip_cell_ = TipHalfCell::of(problem, n_);
     }
     entries_ = problem.entry_nodes(n_);
     if (kirchhoff_) constraint_.emplace(n_, ds_, nu_star_, legendre_, options.max_iterations);
@@ -275,8 +271,7 @@ class Variational final : public Stepper {
       const Vector6& eta = eta_.back();
       e.kinetic += 0.5 * 0.5 * (0.5 * ds_) *
                    eta.dot(tip_cell_->M * eta - legendre_.M.cwiseProduct(eta));
-      e.gravity += tip_cell_->gravity_energy(P_.weight_per_length(), g_.back().rotation(),
-                                             tip_rest_rotation_, ds_);
+      e.gravity += tip_cell_->gravity_energy(P_.weight_per_length(), g_.back().rotation(), ds_);
     }
     if constexpr (kActuated) {
       if (act_->muscles()) {
@@ -706,7 +701,6 @@ class Variational final : public Stepper {
   StaggeredTangent tangent_;
   Energy ledger_;
   std::optional<TipHalfCell> tip_cell_;  ///< the corrected grid's free tip
-  SO3 tip_rest_rotation_;                ///< the rest pose's at the tip (its gravity energy)
   double kinetic_old_ = 0.0;
   double dt_last_ = 0.0;  ///< the last step's dt (the momenta of a moved state, add_tangent)
   bool kirchhoff_ = false;

@@ -15,22 +15,17 @@
 // where the plain grid reaches 8.2e-4 m. Every dynamics scheme takes it: `variational`, the
 // semi-discrete rod of `ida` and `implicit-midpoint-collocation` (SemiDiscreteRod's
 // corrected_grid) and the staggered shooting march of `implicit-midpoint` and `bdf-alpha`.
-#include <string_view>
+#include <optional>
 
 #include "rodlab/lie/se3.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 
 namespace rodlab::solvers::dynamics {
 
-/// Throws std::invalid_argument, naming solver.grid, where `scheme` or the scene cannot take
-/// the corrected grid: a scheme without it (corrected_grid_scheme), and
-/// require_corrected_grid_rod's.
-void require_corrected_grid(const DynamicProblem& problem, std::string_view scheme);
-/// Whether `scheme` implements the corrected grid (every dynamics scheme).
-bool corrected_grid_scheme(std::string_view scheme);
-/// The same for the rod alone: Kirchhoff rods (the flexibility is a shear compliance) and scenes
-/// with actuators (their node inertia and loads are not corrected).
-void require_corrected_grid_rod(const DynamicProblem& problem);
+/// Throws std::invalid_argument, naming solver.grid, where the scene cannot take the corrected
+/// grid (every dynamics scheme can): Kirchhoff rods (the flexibility is a shear compliance) and
+/// scenes with actuators (their node inertia and loads are not corrected).
+void require_corrected_grid(const DynamicProblem& problem);
 
 /// The problem on the corrected grid of `nodes` nodes: its model with the residual bending
 /// flexibility of ds = L / (nodes - 1). The time step `dt: auto` follows from it (the softer
@@ -47,8 +42,12 @@ DynamicProblem corrected_grid_problem(const DynamicProblem& problem, int nodes);
 struct TipHalfCell {
   lie::Vector3 offset;
   lie::Matrix6 M, M_inv;
+  lie::SO3 rest_rotation;  ///< the tip's in the rest pose (set by `of`; gravity_energy's R_ref)
 
   static TipHalfCell make(const rod::RodModel& model, int nodes);
+  /// A scheme's tip cell on the corrected grid (require_corrected_grid first): the free tip's,
+  /// with its rest rotation, or none for a clamped tip (it does not move).
+  static std::optional<TipHalfCell> of(const DynamicProblem& problem, int nodes);
   /// A distributed wrench per unit length at the node, [m; f], moved to act at the centre of
   /// mass: [m + d x f; f].
   lie::Vector6 at_centre_of_mass(const lie::Vector6& wrench) const {
@@ -62,6 +61,9 @@ struct TipHalfCell {
   double gravity_energy(const lie::Vector3& weight_per_length, const lie::SO3& R,
                         const lie::SO3& R_ref, double ds) const {
     return -0.5 * ds * weight_per_length.dot(R * offset - R_ref * offset);
+  }
+  double gravity_energy(const lie::Vector3& weight_per_length, const lie::SO3& R, double ds) const {
+    return gravity_energy(weight_per_length, R, rest_rotation, ds);
   }
 };
 

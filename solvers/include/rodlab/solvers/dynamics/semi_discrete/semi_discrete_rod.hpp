@@ -362,7 +362,6 @@ class SemiDiscreteRod {
   bool full_inertia_ = false;
   std::vector<lie::Matrix6> inertia_, inertia_inv_;
   std::optional<TipHalfCell> tip_cell_;
-  SO3 tip_rest_rotation_;  ///< the tip's rest rotation (the half cell's gravitational energy)
   mutable DynamicProblem::Forces F_{};
   mutable std::vector<double> seg_len_, seg_len0_, seg_lenc_, seg_lenc0_;  ///< m x (N - 1)
   mutable Vector rates_, lengths_, xtmp_;
