@@ -11,6 +11,7 @@
 
 #include "rodlab/check.hpp"
 
+#include "condensed_block_solver.hpp"
 #include "kept_klu_solver.hpp"
 #include "sundials_support.hpp"
 
@@ -79,8 +80,12 @@ void check_kinls(int flag, const char* call) {
 }  // namespace
 
 struct KinsolSolver::Impl {
-  Impl(sundials::JacobianPattern pattern, KluReuse reuse, KluOrder order)
-      : pattern(std::move(pattern)), order(order), reuse(reuse) {
+  Impl(sundials::JacobianPattern pattern, KluReuse reuse, KluOrder order,
+       NewtonLinearSolver linear)
+      : pattern(std::move(pattern)), order(order), reuse(reuse), linear(linear) {
+    if (linear == NewtonLinearSolver::condensed_rod_blocks && reuse == KluReuse::none)
+      throw std::invalid_argument("KinsolSolver: condensed_rod_blocks needs KluReuse analysis or "
+                                  "factors");
     create();
   }
 
@@ -95,6 +100,14 @@ struct KinsolSolver::Impl {
     A = pattern.make_matrix(ctx);
     const bool natural = order == KluOrder::natural;
     const bool kept = reuse != KluReuse::none;
+    if (linear == NewtonLinearSolver::condensed_rod_blocks) {
+      linear_solver.reset(
+          sundials::make_condensed_block_solver(A.get(), ctx, reuse == KluReuse::factors));
+      if (!linear_solver)
+        throw std::invalid_argument(
+            "KinsolSolver: condensed_rod_blocks needs a pattern block tridiagonal in blocks of 13");
+      return;
+    }
     linear_solver.reset(
         kept ? sundials::check_created(
                    sundials::make_kept_klu_solver(n, ctx, natural, reuse == KluReuse::factors),
@@ -113,6 +126,7 @@ struct KinsolSolver::Impl {
   sundials::JacobianPattern pattern;  // the callback writes its values
   KluOrder order = KluOrder::fill_reducing;
   KluReuse reuse = KluReuse::none;
+  NewtonLinearSolver linear = NewtonLinearSolver::klu;
 
   /// What the C callbacks need during one solve.
   struct Call {
@@ -154,13 +168,14 @@ struct KinsolSolver::Impl {
   }
 };
 
-KinsolSolver::KinsolSolver(const SparseMatrix& pattern, KluReuse reuse, KluOrder order)
+KinsolSolver::KinsolSolver(const SparseMatrix& pattern, KluReuse reuse, KluOrder order,
+                           NewtonLinearSolver linear)
     : impl_(std::make_unique<Impl>(sundials::JacobianPattern(pattern, "KinsolSolver"), reuse,
-                                   order)) {}
+                                   order, linear)) {}
 
 KinsolSolver::KinsolSolver(const KinsolSolver& other)
     : impl_(std::make_unique<Impl>(other.impl_->pattern, other.impl_->reuse,
-                                   other.impl_->order)) {
+                                   other.impl_->order, other.impl_->linear)) {
   assign(other);
 }
 
@@ -170,7 +185,7 @@ void KinsolSolver::assign(const KinsolSolver& other) {
   if (&d == &o) return;
   const sunindextype nnz = SUNSparseMatrix_NNZ(d.A.get());
   if (d.pattern.size() != o.pattern.size() || nnz != SUNSparseMatrix_NNZ(o.A.get()) ||
-      d.reuse != o.reuse)
+      d.reuse != o.reuse || d.linear != o.linear)
     throw std::invalid_argument(
         "KinsolSolver::assign: from a solver of another size or factorisation mode");
   N_VScale(1.0, o.u.get(), d.u.get());
@@ -179,7 +194,9 @@ void KinsolSolver::assign(const KinsolSolver& other) {
   const double* values = SUNSparseMatrix_Data(o.A.get());
   std::copy(values, values + nnz, SUNSparseMatrix_Data(d.A.get()));
   // SUNLinSol_KLU analyses and factorises afresh at the start of every solve: nothing is kept.
-  if (d.reuse != KluReuse::none)
+  if (d.linear == NewtonLinearSolver::condensed_rod_blocks)
+    sundials::assign_condensed_block(d.linear_solver.get(), o.linear_solver.get());
+  else if (d.reuse != KluReuse::none)
     sundials::assign_kept_klu(d.linear_solver.get(), o.linear_solver.get());
 }
 

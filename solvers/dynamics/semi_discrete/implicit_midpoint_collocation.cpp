@@ -45,7 +45,8 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
       : rod_(problem, options.nodes, "implicit-midpoint-collocation", true,
              options.corrected_grid),
         kinsol_(constrained() ? rod_.constrained_pattern() : rod_.pattern(false),
-                KluReuse::factors),
+                KluReuse::factors, KluOrder::fill_reducing,
+                constrained() ? NewtonLinearSolver::klu : options.linear_solver),
         tangent_(options.nodes, problem.model()) {
     if (!(options.tol > 0.0))
       throw std::invalid_argument("implicit-midpoint-collocation: tol must be > 0");
