@@ -13,10 +13,13 @@
 //
 //     sum_j S_kj c_j = s_k - sum_j E_kj P_j^-1 r_j,    S_kj = F_kj - E_kj W_j,  W_j = P_j^-1 Q_j,
 //
-// solved by block LU without pivoting across blocks (the block Thomas algorithm; partial
-// pivoting within each C x C pivot block): D_k = S_kk - S_k,k-1 X_(k-1), X_k = D_k^-1 S_k,k+1.
-// For the rod (B = 13 = 7 + 6) that is 6 x 6 pivots where a sparse LU of the whole matrix
-// works with 13-wide bands: about 3 kflop per node to factorise and 0.4 kflop to solve.
+// solved by block LU without pivoting across blocks (the block Thomas algorithm):
+// D_k = S_kk - S_k,k-1 X_(k-1), X_k = D_k^-1 S_k,k+1. P_k^-1 and D_k^-1 are kept as matrices
+// (each from a partial-pivoting LU), so that a solve is fixed-size matrix-vector products (a
+// solve through Eigen's fixed-size LU objects runs its generic triangular kernels: the
+// collocation step at N = 20 was 5 % slower). For the rod (B = 13 = 7 + 6) that is 6 x 6 pivots
+// where a sparse LU of the whole matrix works with 13-wide bands: about 3 kflop per node to
+// factorise and 0.5 kflop to solve.
 //
 // Block elimination without pivoting across blocks is stable where the Schur system is block
 // diagonally dominant or close to symmetric positive definite (the rod's (2/dt)^2 M + K +
@@ -47,8 +50,8 @@ class CondensedBlockLU {
   explicit CondensedBlockLU(int blocks)
       : nb_(blocks),
         band_(3 * static_cast<std::size_t>(blocks), Block::Zero()),
-        local_lu_(blocks),
-        pivot_lu_(blocks),
+        local_inverse_(blocks),
+        pivot_inverse_(blocks),
         W_(blocks),
         X_(blocks),
         lower_(blocks),
@@ -88,9 +91,11 @@ class CondensedBlockLU {
     double* band = band_.data()->data();
     for (std::size_t e = 0; e < target_.size(); ++e) band[target_[e]] = Ax[e];
     for (int k = 0; k < nb_; ++k) {
-      local_lu_[k].compute(block(k, k).template topLeftCorner<L, L>());
-      if (!well_conditioned(local_lu_[k])) return false;
-      W_[k] = local_lu_[k].solve(block(k, k).template topRightCorner<L, C>());
+      const Eigen::PartialPivLU<Eigen::Matrix<double, L, L>> lu(
+          block(k, k).template topLeftCorner<L, L>());
+      if (!well_conditioned(lu)) return false;
+      local_inverse_[k] = lu.inverse();
+      W_[k].noalias() = local_inverse_[k] * block(k, k).template topRightCorner<L, C>();
     }
     for (int k = 0; k < nb_; ++k) {
       Eigen::Matrix<double, C, C> D = schur(k, k);
@@ -98,9 +103,10 @@ class CondensedBlockLU {
         lower_[k] = schur(k, k - 1);
         D.noalias() -= lower_[k] * X_[k - 1];
       }
-      pivot_lu_[k].compute(D);
-      if (!well_conditioned(pivot_lu_[k])) return false;
-      if (k + 1 < nb_) X_[k] = pivot_lu_[k].solve(schur(k, k + 1));
+      const Eigen::PartialPivLU<Eigen::Matrix<double, C, C>> lu(D);
+      if (!well_conditioned(lu)) return false;
+      pivot_inverse_[k] = lu.inverse();
+      if (k + 1 < nb_) X_[k].noalias() = pivot_inverse_[k] * schur(k, k + 1);
     }
     return true;
   }
@@ -108,13 +114,13 @@ class CondensedBlockLU {
   /// x := A^-1 x with the factors of the last successful factor().
   void solve(double* x_data) {
     Eigen::Map<Vector> x(x_data, size());
-    for (int k = 0; k < nb_; ++k) v_[k] = local_lu_[k].solve(x.template segment<L>(B * k));
+    for (int k = 0; k < nb_; ++k) v_[k].noalias() = local_inverse_[k] * x.template segment<L>(B * k);
     for (int k = 0; k < nb_; ++k) {  // forward: D_k y_k = s_k - E v - S_k,k-1 y_(k-1)
       Eigen::Matrix<double, C, 1> s = x.template segment<C>(B * k + L);
       for (int j = std::max(0, k - 1); j <= std::min(nb_ - 1, k + 1); ++j)
         s.noalias() -= block(k, j).template bottomLeftCorner<C, L>() * v_[j];
       if (k > 0) s.noalias() -= lower_[k] * x.template segment<C>(B * (k - 1) + L);
-      x.template segment<C>(B * k + L) = pivot_lu_[k].solve(s);
+      x.template segment<C>(B * k + L).noalias() = pivot_inverse_[k] * s;
     }
     for (int k = nb_ - 2; k >= 0; --k)  // backward: c_k = y_k - X_k c_(k+1)
       x.template segment<C>(B * k + L).noalias() -= X_[k] * x.template segment<C>(B * (k + 1) + L);
@@ -149,8 +155,8 @@ class CondensedBlockLU {
   std::vector<Block> band_;                ///< blocks (k, k-1), (k, k), (k, k+1) of every k
   std::vector<std::size_t> target_;        ///< per pattern entry: its place in band_
   std::vector<std::size_t> off_block_local_;  ///< entries that must be zero (see map_pattern)
-  std::vector<Eigen::PartialPivLU<Eigen::Matrix<double, L, L>>> local_lu_;  ///< P_k
-  std::vector<Eigen::PartialPivLU<Eigen::Matrix<double, C, C>>> pivot_lu_;  ///< D_k
+  std::vector<Eigen::Matrix<double, L, L>> local_inverse_;  ///< P_k^-1
+  std::vector<Eigen::Matrix<double, C, C>> pivot_inverse_;  ///< D_k^-1
   std::vector<Eigen::Matrix<double, L, C>> W_;      ///< P_k^-1 Q_k
   std::vector<Eigen::Matrix<double, C, C>> X_;      ///< D_k^-1 S_k,k+1
   std::vector<Eigen::Matrix<double, C, C>> lower_;  ///< S_k,k-1
