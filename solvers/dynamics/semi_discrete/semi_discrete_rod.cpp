@@ -264,6 +264,7 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
   unpack_nodes(y);
   const bool actuators = P_.has_actuators();
   if (actuators) F_ = P_.forces(t, x, rest_.data());
+  const double inv_ds = 1.0 / ds_;  // products, not divisions, in the loops
   if (m_ > 0) rates_.setZero();
   for (int j = 0; j + 1 < n_; ++j) {
     const SE3 G = g_[j].inverse() * g_[j + 1];
@@ -271,10 +272,10 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
     // e, f of the small-angle kernels (as in `variational`); the two adjoint maps share R^T.
     small::EF k;
     const Vector6 x_seg = small::log(G, k);  // ds xi_j
-    xi_[j] = x_seg / ds_;
+    xi_[j] = x_seg * inv_ds;
     const lie::SE3Adjoints adjoints(G);
     const Vector6 rel = eta_[j + 1] - adjoints.inverse_Ad_apply(eta_[j]);
-    xi_dot_[j] = small::dexp_inv_apply(-x_seg, rel, k) / ds_;
+    xi_dot_[j] = small::dexp_inv_apply(-x_seg, rel, k) * inv_ds;
     const double s_mid = (j + 0.5) * ds_;
     // Kirchhoff rods: the rod's own force part is replaced by the constraint force (header).
     Vector6 xk = model_strain(xi_[j], j), xk_dot = xi_dot_[j];
@@ -308,7 +309,7 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
   for (int j = 0; j + 1 < n_; ++j) diss += seg_diss_[j], work += seg_work_[j];
   for (int j = 1; j <= last_; ++j) {
     const bool tip = j == n_ - 1;
-    const double w = tip ? 0.5 * ds_ : ds_;
+    const double w = tip ? 0.5 * ds_ : ds_, inv_w = tip ? 2.0 * inv_ds : inv_ds;
     const SO3& R = g_[j].rotation();
     const Vector6& eta = eta_[j];
     const Vector6 inner = tip ? P_.tip_load(R, t) : lambda_[j];
@@ -340,12 +341,12 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
           muscles_ ? P_.embedded_weight(R, s - 0.5 * ds_, std::min(P_.length(), s + 0.5 * ds_), s)
                    : Vector6::Zero();
       const Vector6 rhs = se3::coad_apply(eta, inertia_[j] * eta) +
-                          (inner - moved_[j - 1] + entry) / w + node_gravity(j, R) + weight +
+                          (inner - moved_[j - 1] + entry) * inv_w + node_gravity(j, R) + weight +
                           applied + drag;
       Eigen::Map<Vector6>(out + kEta) = inertia_inv_[j] * rhs;
     } else {
       const Vector6 rhs = se3::coad_apply(eta, M_.cwiseProduct(eta)) +
-                          (inner - moved_[j - 1] + entry) / w + P_.gravity_load(R) + applied + drag;
+                          (inner - moved_[j - 1] + entry) * inv_w + P_.gravity_load(R) + applied + drag;
       Eigen::Map<Vector6>(out + kEta) = rhs.cwiseQuotient(M_);
     }
   }
