@@ -84,7 +84,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     for (int e = 0; e < m_; ++e) ko_.u_scale[n_ + nc_ + e] = 1.0 / rod_.unknown_scale(e);
     cached_ = Vector::Zero(
         (constrained() ? rod_.constrained_pattern() : rod_.pattern(false)).nonZeros());
-    warm_ = Vector::Zero(n_ + nc_ + m_);
+    warm_ = evaluated_ = Vector::Zero(n_ + nc_ + m_);
     g_move_.assign(options.nodes, SE3::identity());
     xi_move_.assign(options.nodes - 1, Vector6::Zero());
     eta_move_.assign(options.nodes, Vector6::Zero());
@@ -209,11 +209,14 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
       fresh_iterations_ = static_cast<int>(iterations);
     if (iterations > std::max(kSlowSolve, fresh_iterations_ + kSlowMargin)) cache_valid_ = false;
 
-    // Ledger powers at the midpoint, then y1 = y0 + 2 z.
-    ym_ = y_.head(n_) + z_.head(n_);
+    // Ledger powers at the midpoint (in f_ already where KINSOL's last residual was at z, as
+    // it is after a converged solve), then y1 = y0 + 2 z.
     forces_ = z_.segment(n_, nc_);
     x_ = z_.tail(m_);
-    rate(ym_, forces_, x_);
+    if (!(evaluated_ == z_)) {
+      ym_ = y_.head(n_) + z_.head(n_);
+      rate(ym_, forces_, x_);
+    }
     forces_used_ = rod_.last_forces();
     y_.head(n_) += 2.0 * z_.head(n_);
     y_[rod_.dissipated_index()] += dt * f_[rod_.dissipated_index()];
@@ -279,7 +282,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     cached_ = o.cached_, cached_a_ = o.cached_a_, cache_valid_ = o.cache_valid_;
     age_ = o.age_, jacobian_calls_ = o.jacobian_calls_, fresh_jacobians_ = o.fresh_jacobians_;
     fresh_iterations_ = o.fresh_iterations_;
-    warm_ = o.warm_, warm_pending_ = o.warm_pending_;
+    warm_ = o.warm_, warm_pending_ = o.warm_pending_, evaluated_ = o.evaluated_;
     g_move_ = o.g_move_, xi_move_ = o.xi_move_, eta_move_ = o.eta_move_;
     rod_.set_state(y_);
   }
@@ -340,7 +343,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
 
   /// f(h, y) (ledger rows included) into f_, with the constraint forces of a Kirchhoff rod and
   /// the actuator unknowns.
-  void rate(const Vector& y, const Vector& forces, const Vector& x) {
+  void rate(const ConstRef& y, const ConstRef& forces, const ConstRef& x) {
     if (!constrained())
       rod_.rhs(h_, y, f_);
     else
@@ -354,15 +357,14 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   // Actuator unknowns x (muscle lengths at the midpoint, length-controlled forces) follow,
   // with their rows: (Delta - L(y_m)) / L, and (L(y_1) - L_target(t + dt)) / L at the end of
   // the step.
+  // f(h, y0 + z) goes to f_ with its ledger rows, and u to evaluated_: the step's ledger powers
+  // need no evaluation of their own.
   void residual(const ConstRef& u, Eigen::Ref<Vector> F) {
     ym_ = y_.head(n_) + u.head(n_);
-    if (!constrained()) {
-      rod_.rhs(h_, ym_, F);
-      F = a_ * u - F;
-      return;
-    }
-    rod_.rhs(h_, ym_, u.segment(n_, nc_), u.tail(m_), F.head(n_));
-    F.head(n_) = a_ * u.head(n_) - F.head(n_);
+    rate(ym_, u.segment(n_, nc_), u.tail(m_));
+    F.head(n_) = a_ * u.head(n_) - f_.head(n_);
+    evaluated_ = u;
+    if (!constrained()) return;
     y1_ = y_.head(n_) + 2.0 * u.head(n_);
     if (nc_ > 0) rod_.constraint(y1_, F.segment(n_, nc_));
     if (m_ > 0) rod_.actuator_rows(t_end_, y1_, u.tail(m_), F.tail(m_));
@@ -428,6 +430,7 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   Vector fs_;          ///< residual scaling (KINSOL's f_scale)
   Vector ym_, z_, z0_, f_;  ///< midpoint, half-step increment (and its prediction), f
   Vector trial_, F_;        ///< predictor candidates and their residual
+  Vector evaluated_;        ///< the unknowns of the last residual (f_ holds its rates)
   Vector w_;           ///< rate scale per node row, omega_1 tolerance_scale()
   // Step in progress and predictor history (mean rates of the last two steps).
   double h_ = 0.0, a_ = 1.0, t_ = 0.0, dt1_ = 0.0, dt2_ = 0.0;
