@@ -21,6 +21,12 @@
 // where a sparse LU of the whole matrix works with 13-wide bands: about 3 kflop per node to
 // factorise and 0.5 kflop to solve.
 //
+// A border of `tail` rows and columns may follow the blocks: rows that see any block column
+// (dense) and, among the tail columns, only those up to their own (lower triangular), while the
+// tail columns appear in no block row. That is `ida`'s Newton matrix with its ledger rows:
+// D' = P_diss(y) and W' = P_in(y) depend on every node, nothing depends on D or W. The tail
+// unknowns follow by forward substitution once the blocks are solved.
+//
 // Block elimination without pivoting across blocks is stable where the Schur system is block
 // diagonally dominant or close to symmetric positive definite (the rod's (2/dt)^2 M + K +
 // (2/dt) V, scaled by M^-1); factor() refuses a matrix whose pivot blocks look ill-conditioned
@@ -46,9 +52,12 @@ class CondensedBlockLU {
   using Block = Eigen::Matrix<double, B, B>;
   using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1>;
 
-  /// A solver for `blocks` blocks (the matrix is B * blocks square).
-  explicit CondensedBlockLU(int blocks)
+  /// A solver for `blocks` blocks and `tail` bordering rows and columns (the matrix is
+  /// B * blocks + tail square).
+  explicit CondensedBlockLU(int blocks, int tail = 0)
       : nb_(blocks),
+        tail_(tail),
+        border_(static_cast<std::size_t>(tail) * (B * blocks + tail), 0.0),
         band_(3 * static_cast<std::size_t>(blocks), Block::Zero()),
         local_inverse_(blocks),
         pivot_inverse_(blocks),
@@ -58,38 +67,58 @@ class CondensedBlockLU {
         v_(blocks) {}
 
   int blocks() const { return nb_; }
-  int size() const { return B * nb_; }
+  int size() const { return B * nb_ + tail_; }
 
   /// Where the entries of a CSC pattern (column pointers Ap, row indices Ai, size() columns)
-  /// go in the band. False, and nothing mapped, if an entry lies outside the tridiagonal band
-  /// of blocks. Entries of local rows outside their own block are allowed in the pattern (a
-  /// pattern may be structurally wider than the values): factor() requires them to be zero.
+  /// go. False, and nothing mapped, if a block row's entry lies outside the tridiagonal band of
+  /// blocks. Entries that the values must leave zero are allowed in the pattern (a pattern may
+  /// be structurally wider than the values): local rows outside their own block, tail columns
+  /// in block rows, tail rows above the diagonal among the tail columns; factor() checks them.
   template <class Index>
   bool map_pattern(const Index* Ap, const Index* Ai) {
+    const Index n_blocks = B * nb_;
     std::vector<std::size_t> target;
-    std::vector<std::size_t> off_block_local;
+    std::vector<std::size_t> must_be_zero;
     for (Index col = 0; col < size(); ++col)
       for (Index e = Ap[col]; e < Ap[col + 1]; ++e) {
         const Index row = Ai[e];
+        if (row < 0 || row >= size()) return false;
+        if (row >= n_blocks || col >= n_blocks) {  // the border: row-major rows of size()
+          const bool zero = row < n_blocks || col > row;
+          target.push_back(zero ? kNowhere
+                                : kBorder + static_cast<std::size_t>(row - n_blocks) * size() +
+                                      static_cast<std::size_t>(col));
+          if (zero) must_be_zero.push_back(static_cast<std::size_t>(e));
+          continue;
+        }
         // 0, 1, 2: the block left of, on, right of the diagonal
         const Index off = col / B - row / B + 1;
-        if (row < 0 || row >= size() || off < 0 || off > 2) return false;
+        if (off < 0 || off > 2) return false;
         target.push_back(((static_cast<std::size_t>(row / B) * 3 + off) * B + col % B) * B +
                          row % B);
-        if (row % B < L && off != 1) off_block_local.push_back(static_cast<std::size_t>(e));
+        if (row % B < L && off != 1) must_be_zero.push_back(static_cast<std::size_t>(e));
       }
     target_.swap(target);
-    off_block_local_.swap(off_block_local);
+    must_be_zero_.swap(must_be_zero);
     return true;
   }
 
   /// Factorises the matrix with the mapped pattern's values Ax. False (the factors unusable)
   /// when a local row has a non-zero outside its block or a pivot block is ill-conditioned.
   bool factor(const double* Ax) {
-    for (const std::size_t e : off_block_local_)
+    for (const std::size_t e : must_be_zero_)
       if (Ax[e] != 0.0) return false;
     double* band = band_.data()->data();
-    for (std::size_t e = 0; e < target_.size(); ++e) band[target_[e]] = Ax[e];
+    for (std::size_t e = 0; e < target_.size(); ++e) {
+      const std::size_t t = target_[e];
+      if (t < kBorder)
+        band[t] = Ax[e];
+      else if (t != kNowhere)
+        border_[t - kBorder] = Ax[e];
+    }
+    for (int r = 0; r < tail_; ++r)  // the border's diagonal
+      if (!(std::abs(border(r, B * nb_ + r)) > 0.0) || !std::isfinite(border(r, B * nb_ + r)))
+        return false;
     for (int k = 0; k < nb_; ++k) {
       const Eigen::PartialPivLU<Eigen::Matrix<double, L, L>> lu(
           block(k, k).template topLeftCorner<L, L>());
@@ -126,9 +155,22 @@ class CondensedBlockLU {
       x.template segment<C>(B * k + L).noalias() -= X_[k] * x.template segment<C>(B * (k + 1) + L);
     for (int k = 0; k < nb_; ++k)  // the local unknowns: l_k = P_k^-1 r_k - W_k c_k
       x.template segment<L>(B * k).noalias() = v_[k] - W_[k] * x.template segment<C>(B * k + L);
+    for (int r = 0; r < tail_; ++r) {  // the border, by forward substitution
+      const int row = B * nb_ + r;
+      const Eigen::Map<const Vector> coefficients(&border_[static_cast<std::size_t>(r) * size()],
+                                                  row);
+      x[row] = (x[row] - coefficients.dot(x.head(row))) / border(r, row);
+    }
   }
 
  private:
+  static constexpr std::size_t kNowhere = static_cast<std::size_t>(-1);  ///< a zero entry
+  static constexpr std::size_t kBorder = kNowhere / 2;  ///< targets from here on: the border
+
+  double border(int r, int col) const {
+    return border_[static_cast<std::size_t>(r) * size() + col];
+  }
+
   /// KLU's cheap reciprocal condition estimate, min |U_ii| / max |U_ii| (klu_rcond), at least
   /// eps^(2/3) (SUNLinSol_KLU's threshold); false for non-finite pivots.
   template <class LU>
@@ -151,10 +193,11 @@ class CondensedBlockLU {
     return S;
   }
 
-  int nb_ = 0;
-  std::vector<Block> band_;                ///< blocks (k, k-1), (k, k), (k, k+1) of every k
-  std::vector<std::size_t> target_;        ///< per pattern entry: its place in band_
-  std::vector<std::size_t> off_block_local_;  ///< entries that must be zero (see map_pattern)
+  int nb_ = 0, tail_ = 0;
+  std::vector<double> border_;  ///< the tail rows, row-major, size() columns each
+  std::vector<Block> band_;     ///< blocks (k, k-1), (k, k), (k, k+1) of every k
+  std::vector<std::size_t> target_;        ///< per pattern entry: its place (band_, border_)
+  std::vector<std::size_t> must_be_zero_;  ///< entries the values must leave zero (map_pattern)
   std::vector<Eigen::Matrix<double, L, L>> local_inverse_;  ///< P_k^-1
   std::vector<Eigen::Matrix<double, C, C>> pivot_inverse_;  ///< D_k^-1
   std::vector<Eigen::Matrix<double, L, C>> W_;      ///< P_k^-1 Q_k

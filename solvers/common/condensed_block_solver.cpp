@@ -17,7 +17,7 @@ namespace {
 using BlockLU = CondensedBlockLU<kCondensedLocal, kCondensedBlock - kCondensedLocal>;
 
 struct Content {
-  explicit Content(int blocks) : lu(blocks) {}
+  Content(int blocks, int tail) : lu(blocks, tail) {}
   BlockLU lu;
   SUNLinearSolver klu = nullptr;  ///< the fallback, analysed on first use
   bool use_klu = false;           ///< the last factorisation was KLU's
@@ -86,13 +86,12 @@ int free_solver(SUNLinearSolver S) {
 
 SUNLinearSolver make_condensed_block_solver(SUNMatrix pattern, SUNContext ctx, bool keep_factors) {
   const sunindextype n = SUNSparseMatrix_Columns(pattern);
-  if (SUNSparseMatrix_SparseType(pattern) != CSC_MAT || n <= 0 || n % kCondensedBlock != 0)
-    return nullptr;
+  if (SUNSparseMatrix_SparseType(pattern) != CSC_MAT || n < kCondensedBlock) return nullptr;
   SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
   if (!S) return nullptr;
   Content* c = nullptr;
   try {
-    c = new Content(static_cast<int>(n / kCondensedBlock));
+    c = new Content(static_cast<int>(n / kCondensedBlock), static_cast<int>(n % kCondensedBlock));
     c->keep_factors = keep_factors;
     if (!c->lu.map_pattern(SUNSparseMatrix_IndexPointers(pattern),
                            SUNSparseMatrix_IndexValues(pattern)))

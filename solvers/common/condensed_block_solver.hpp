@@ -17,8 +17,9 @@ namespace rodlab::solvers::sundials {
 inline constexpr int kCondensedBlock = 13, kCondensedLocal = 7;
 
 /// A new solver owned by the caller (SUNLinSolFree releases it), for CSC SUNSparseMatrix
-/// Jacobians with the pattern of `pattern` (n x n, n a multiple of 13); NULL when the pattern
-/// is not block tridiagonal in blocks of 13 or on allocation failure.
+/// Jacobians with the pattern of `pattern`: n x n, floor(n / 13) blocks of 13 and a border of
+/// n mod 13 rows (condensed_block_lu.hpp; `ida`'s two ledger rows). NULL when the pattern is not
+/// of that form or on allocation failure.
 SUNLinearSolver make_condensed_block_solver(SUNMatrix pattern, SUNContext ctx, bool keep_factors);
 
 /// Makes dst's kept state (factors, the values factorised last, the fallback's analysis and

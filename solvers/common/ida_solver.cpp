@@ -10,6 +10,7 @@
 
 #include "rodlab/check.hpp"
 
+#include "condensed_block_solver.hpp"
 #include "sundials_support.hpp"
 
 namespace rodlab::solvers {
@@ -212,8 +213,14 @@ IdaSolver::IdaSolver(const SparseMatrix& pattern, Residual residual, Jacobian ja
   }
   d.suppress_algebraic = options.suppress_algebraic;
   d.A = d.pattern.make_matrix(ctx);
-  d.linear_solver.reset(
-      sundials::check_created(SUNLinSol_KLU(d.y.get(), d.A.get(), ctx), "IDA", "SUNLinSol_KLU"));
+  if (options.linear_solver == NewtonLinearSolver::condensed_rod_blocks) {
+    d.linear_solver.reset(sundials::make_condensed_block_solver(d.A.get(), ctx, true));
+    if (!d.linear_solver)
+      throw std::invalid_argument("IdaSolver: condensed_rod_blocks needs a pattern of its form");
+  } else {
+    d.linear_solver.reset(
+        sundials::check_created(SUNLinSol_KLU(d.y.get(), d.A.get(), ctx), "IDA", "SUNLinSol_KLU"));
+  }
 
   // IDAInit needs the initial state; it and everything that must follow it happen in
   // initialize(). The options that may precede it are set here.

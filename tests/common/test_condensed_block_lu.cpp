@@ -112,6 +112,50 @@ BOOST_AUTO_TEST_CASE(solves_like_a_dense_lu) {
   BOOST_TEST(factored);
 }
 
+BOOST_AUTO_TEST_CASE(solves_a_bordered_matrix_like_a_dense_lu) {
+  // `tail` rows after the blocks that see every column up to their own (ida's ledger rows:
+  // dense in the nodes, lower triangular among themselves), their columns in no block row.
+  // Measured: backward errors 1.8e-17 .. 3.3e-17.
+  for (const int tail : {1, 2, 3}) {
+    Dense A = random_matrix(7, 6, 6, 4.0, 0.3, 17 + tail);
+    const int n = static_cast<int>(A.rows());
+    Dense bordered = Dense::Zero(n + tail, n + tail);
+    bordered.topLeftCorner(n, n) = A;
+    std::mt19937 gen(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int r = 0; r < tail; ++r) {
+      for (int col = 0; col < n + r; ++col) bordered(n + r, col) = u(gen);
+      bordered(n + r, n + r) = 2.0 + u(gen);
+    }
+    std::vector<Eigen::Triplet<double>> t;  // the band and the whole border, as a pattern
+    for (int col = 0; col < n + tail; ++col)
+      for (int row = 0; row < n + tail; ++row)
+        if (row >= n || col >= n || std::abs(row / 13 - col / 13) <= 1)
+          t.emplace_back(row, col, bordered(row, col));
+    Sparse S(n + tail, n + tail);
+    S.setFromTriplets(t.begin(), t.end());
+    S.makeCompressed();
+    CondensedBlockLU<7, 6> lu(6, tail);
+    BOOST_REQUIRE(lu.map_pattern(S.outerIndexPtr(), S.innerIndexPtr()));
+    BOOST_REQUIRE(lu.factor(S.valuePtr()));
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n + tail, -1.0, 2.0);
+    Eigen::VectorXd x = b;
+    lu.solve(x.data());
+    const double error = (bordered * x - b).norm() / (bordered.norm() * x.norm() + b.norm());
+    BOOST_TEST_MESSAGE("tail " << tail << ": backward error " << error);
+    BOOST_TEST(error <= 1e-15);
+    // A block row that sees a tail column, or a tail row above its diagonal: refused.
+    for (const auto& [row, col] : {std::pair{3, n}, std::pair{n, n + tail - 1}}) {
+      if (row == n && tail == 1) continue;
+      Sparse wrong = S;
+      wrong.coeffRef(row, col) = 0.5;
+      CondensedBlockLU<7, 6> refused(6, tail);
+      BOOST_REQUIRE(refused.map_pattern(wrong.outerIndexPtr(), wrong.innerIndexPtr()));
+      BOOST_TEST(!refused.factor(wrong.valuePtr()), "row " << row << ", column " << col);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(refuses_what_it_cannot_solve) {
   // A local row reaching another block: the condensation would be wrong, so factor() refuses.
   Dense A = random_matrix(2, 3, 4, 4.0, 0.3, 7);

@@ -46,6 +46,7 @@ class IdaReference final : public Stepper {
     io.rtol = options.rtol;
     io.atol = options.atol * rod_.tolerance_scale();
     io.max_steps = chunk_steps(options);
+    if (rod_.unknown_size() == 0) io.linear_solver = options.linear_solver;
 
     ida_ = std::make_unique<IdaSolver>(
         rod_.pattern(true),

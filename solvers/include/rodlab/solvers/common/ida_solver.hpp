@@ -28,6 +28,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "rodlab/solvers/common/newton_linear_solver.hpp"
+
 namespace rodlab::solvers {
 
 /// Thrown by a residual (or Jacobian) callback that cannot be evaluated at this (t, y, y') but
@@ -49,6 +51,9 @@ struct IdaSolverOptions {
   /// Leave the algebraic components (id 0) out of the local error test (IDASetSuppressAlg):
   /// the usual setting for index-2 systems, whose multipliers are not smooth enough for it.
   bool suppress_algebraic = false;
+  /// The Newton systems' linear solver (newton_linear_solver.hpp); condensed_rod_blocks throws
+  /// std::invalid_argument for a pattern not of its form.
+  NewtonLinearSolver linear_solver = NewtonLinearSolver::klu;
 };
 
 struct IdaStats {

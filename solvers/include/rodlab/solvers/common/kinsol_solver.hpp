@@ -28,6 +28,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "rodlab/solvers/common/newton_linear_solver.hpp"
+
 namespace rodlab::solvers {
 
 /// Thrown by a residual (or Jacobian) callback that cannot be evaluated at this x but may be
@@ -84,15 +86,6 @@ enum class KluOrder { fill_reducing, natural };
 /// factorised one is not factorised again.
 enum class KluReuse { none, analysis, factors };
 
-/// The Newton systems' linear solver. `klu`: KLU on the whole sparse Jacobian.
-/// `condensed_rod_blocks`: for the semi-discrete rod's Newton matrix a I - df/dy (block
-/// tridiagonal in nodes of 13 unknowns p, q, eta whose 7 pose rows involve their own node alone,
-/// semi_discrete_rod.hpp): the pose rows are condensed node by node and the 6 x 6
-/// block-tridiagonal Schur system is solved by block LU (condensed_block_lu.hpp), with KLU (as
-/// `reuse`, which must not be `none`) for a matrix that breaks that structure or whose pivot
-/// blocks look ill-conditioned. Same solutions to rounding, at a fraction of KLU's cost
-/// (docs/dynamics.md "implicit-midpoint-collocation").
-enum class NewtonLinearSolver { klu, condensed_rod_blocks };
 
 class KinsolSolver {
  public:
@@ -108,8 +101,8 @@ class KinsolSolver {
   /// (values are ignored). Throws std::invalid_argument for a non-square or empty pattern and
   /// std::runtime_error when SUNDIALS cannot create its objects. `reuse`: what KLU keeps
   /// between solves (KluReuse); `order`: KLU's column order; `linear`: the linear solver
-  /// (NewtonLinearSolver; condensed_rod_blocks throws std::invalid_argument for a pattern not
-  /// block tridiagonal in blocks of 13, or with KluReuse::none).
+  /// (NewtonLinearSolver; condensed_rod_blocks throws std::invalid_argument for a pattern not of
+  /// its form, or with KluReuse::none).
   explicit KinsolSolver(const SparseMatrix& pattern, KluReuse reuse = KluReuse::none,
                         KluOrder order = KluOrder::fill_reducing,
                         NewtonLinearSolver linear = NewtonLinearSolver::klu);

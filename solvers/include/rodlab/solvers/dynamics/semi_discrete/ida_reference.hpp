@@ -46,6 +46,7 @@
 #include <memory>
 #include <span>
 
+#include "rodlab/solvers/common/newton_linear_solver.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
 
@@ -60,6 +61,9 @@ struct IdaOptions {
   /// The corrected grid (solver.grid: corrected; SemiDiscreteRod's corrected_grid): the problem
   /// is to carry the grid's model (corrected_grid_problem); Cosserat rods without actuators.
   bool corrected_grid = false;
+  /// The Newton systems' linear solver where the pattern allows it (Cosserat rods without
+  /// actuator unknowns, newton_linear_solver.hpp; else KLU).
+  NewtonLinearSolver linear_solver = NewtonLinearSolver::condensed_rod_blocks;
 };
 
 /// The step budget of a step() call over `interval` seconds at max_steps = 0:

@@ -1,0 +1,17 @@
+#pragma once
+// The linear solver of the Newton systems in KinsolSolver and IdaSolver.
+
+namespace rodlab::solvers {
+
+/// `klu`: KLU on the whole sparse Newton matrix.
+/// `condensed_rod_blocks`: for the semi-discrete rod's Newton matrix a I - df/dy (block
+/// tridiagonal in nodes of 13 unknowns p, q, eta whose 7 pose rows involve their own node alone,
+/// semi_discrete_rod.hpp), optionally bordered by rows that depend on every node and that no
+/// row depends on (`ida`'s ledger rows): the pose rows are condensed node by node, the 6 x 6
+/// block-tridiagonal Schur system is solved by block LU and the border by forward substitution
+/// (condensed_block_lu.hpp); KLU factorises a matrix whose values break that structure or whose
+/// pivot blocks look ill-conditioned. The same solutions to rounding, at a fraction of KLU's cost
+/// (docs/dynamics.md "implicit-midpoint-collocation", "ida").
+enum class NewtonLinearSolver { klu, condensed_rod_blocks };
+
+}  // namespace rodlab::solvers
