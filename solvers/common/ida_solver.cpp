@@ -216,7 +216,8 @@ IdaSolver::IdaSolver(const SparseMatrix& pattern, Residual residual, Jacobian ja
   if (options.linear_solver == NewtonLinearSolver::condensed_rod_blocks) {
     d.linear_solver.reset(sundials::make_condensed_block_solver(d.A.get(), ctx, true));
     if (!d.linear_solver)
-      throw std::invalid_argument("IdaSolver: condensed_rod_blocks needs a pattern of its form");
+      throw std::invalid_argument(
+          "IdaSolver: condensed_rod_blocks needs a pattern of its form (newton_linear_solver.hpp)");
   } else {
     d.linear_solver.reset(
         sundials::check_created(SUNLinSol_KLU(d.y.get(), d.A.get(), ctx), "IDA", "SUNLinSol_KLU"));

@@ -105,7 +105,8 @@ struct KinsolSolver::Impl {
           sundials::make_condensed_block_solver(A.get(), ctx, reuse == KluReuse::factors));
       if (!linear_solver)
         throw std::invalid_argument(
-            "KinsolSolver: condensed_rod_blocks needs a pattern block tridiagonal in blocks of 13");
+            "KinsolSolver: condensed_rod_blocks needs a pattern of its form "
+            "(newton_linear_solver.hpp)");
       return;
     }
     linear_solver.reset(

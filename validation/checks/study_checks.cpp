@@ -481,9 +481,13 @@ FigureSpec step_limit_figure(const std::string& name, const std::string& title,
 }
 
 /// The explicit scheme's measured stability limit against the computed one, over N and E: the
-/// thesis' time rule (symplectic-euler), whose criterion time_step.hpp computes.
+/// thesis' time rule (symplectic-euler), whose criterion time_step.hpp computes. Below 0.95 the
+/// computed limit would be unsafe; above 1.10, needlessly small. At N = 10 the measured onset
+/// lies 3.6-5.9 % above it (E = 1e6, 1e4 Pa: a sharp blow-up within 140 steps at 1.06); until
+/// (3.42)'s Newton took its Jacobian at the iterate (2f26d9c), the tip node's Newton failed
+/// first, at 1.005 (docs/validation.md).
 void explicit_stability_map(const ValidationContext& context, std::vector<Check>& out) {
-  DataSet d = stability_limits(context, "symplectic-euler", "", 0.95, 1.05,
+  DataSet d = stability_limits(context, "symplectic-euler", "", 0.95, 1.10,
                                "Jury criterion with the von Neumann omega_max "
                                "(variational_stable_step, docs/dynamics.md)",
                                out);

@@ -1,6 +1,7 @@
 #pragma once
 // The SUNDIALS IDA adapter: variable-order BDF integration of an implicit system
-// F(t, y, y') = 0 with the Newton matrix dF/dy + cj dF/dy' factorised by KLU. This is the only
+// F(t, y, y') = 0 with the Newton matrix dF/dy + cj dF/dy' factorised by KLU (or, for the
+// semi-discrete rod, the condensed block solver: newton_linear_solver.hpp). This is the only
 // code in rodlab that talks to IDA; its header exposes Eigen and std types only (the SUNDIALS
 // headers stay in ida_solver.cpp). It follows kinsol_solver.hpp:
 //   - RAII owners for the SUNContext, the N_Vectors, the sparse (CSC) SUNMatrix, the KLU
@@ -66,7 +67,7 @@ struct IdaStats {
   long steps = 0;
   long residual_evaluations = 0;  ///< by IDA (not by the Jacobian callback)
   long jacobian_evaluations = 0;
-  long linear_setups = 0;         ///< KLU factorisations
+  long linear_setups = 0;         ///< linear solver setups (factorisations)
   long nonlinear_iterations = 0;
   long nonlinear_convergence_failures = 0;
   long error_test_failures = 0;

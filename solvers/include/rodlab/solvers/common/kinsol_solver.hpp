@@ -1,6 +1,7 @@
 #pragma once
 // The SUNDIALS KINSOL adapter: Newton's method with a line search (or full steps) on a large
-// sparse nonlinear system F(x) = 0, with the Jacobian factorised by KLU. This is the only code
+// sparse nonlinear system F(x) = 0, with the Jacobian factorised by KLU (or, for the
+// semi-discrete rod, the condensed block solver: newton_linear_solver.hpp). This is the only code
 // in rodlab that talks to KINSOL; its header exposes Eigen and std types only (the SUNDIALS
 // headers stay in kinsol_solver.cpp).
 //
