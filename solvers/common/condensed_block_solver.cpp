@@ -1,14 +1,13 @@
 #include "condensed_block_solver.hpp"
 
-#include <algorithm>
 #include <new>
 #include <stdexcept>
-#include <vector>
 
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "condensed_block_lu.hpp"
+#include "direct_solver_shell.hpp"
 #include "kept_klu_solver.hpp"
 
 namespace rodlab::solvers::sundials {
@@ -18,23 +17,23 @@ using BlockLU = CondensedBlockLU<kCondensedLocal, kCondensedBlock - kCondensedLo
 
 struct Content {
   Content(int blocks, int tail) : lu(blocks, tail) {}
+  Content(const Content&) = delete;
+  Content& operator=(const Content&) = delete;
+  ~Content() { SUNLinSolFree(klu); }
   BlockLU lu;
   SUNLinearSolver klu = nullptr;  ///< the fallback, analysed on first use
   bool use_klu = false;           ///< the last factorisation was KLU's
   bool factored = false;          ///< the factors are valid
   bool keep_factors = true;       ///< across KINSol calls
-  std::vector<double> factorised;  ///< the values of the last factorised matrix
+  FactorisedValues factorised;    ///< the values of the last factorised matrix
   int last_flag = SUNLS_SUCCESS;
 };
 
 Content& content(SUNLinearSolver S) { return *static_cast<Content*>(S->content); }
 
-SUNLinearSolver_Type get_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
-SUNLinearSolver_ID get_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
-
 int initialize(SUNLinearSolver S) {
   Content& c = content(S);
-  if (!c.keep_factors) c.factored = false, c.factorised.clear();
+  if (!c.keep_factors) c.factored = false, c.factorised.forget();
   SUNLinSolInitialize(c.klu);
   return c.last_flag = SUNLS_SUCCESS;
 }
@@ -46,8 +45,7 @@ int setup(SUNLinearSolver S, SUNMatrix A) {
   const double* Ax = SUNSparseMatrix_Data(A);
   const auto nnz = static_cast<std::size_t>(SUNSparseMatrix_IndexPointers(A)[c.lu.size()]);
   // The matrix factorised last (a Jacobian kept across solves): the factors are still right.
-  if (c.factored && c.factorised.size() == nnz && std::equal(Ax, Ax + nnz, c.factorised.begin()))
-    return c.last_flag = SUNLS_SUCCESS;
+  if (c.factored && c.factorised.same(Ax, nnz)) return c.last_flag = SUNLS_SUCCESS;
   c.factored = false;
   c.use_klu = !c.lu.factor(Ax);
   if (c.use_klu) {
@@ -55,7 +53,7 @@ int setup(SUNLinearSolver S, SUNMatrix A) {
     if (flag != SUNLS_SUCCESS) return c.last_flag = flag;
   }
   c.factored = true;
-  c.factorised.assign(Ax, Ax + nnz);
+  c.factorised.remember(Ax, nnz);
   return c.last_flag = SUNLS_SUCCESS;
 }
 
@@ -66,20 +64,6 @@ int solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, double tol) {
   N_VScale(1.0, b, x);
   c.lu.solve(N_VGetArrayPointer(x));
   return c.last_flag = SUNLS_SUCCESS;
-}
-
-sunindextype last_flag(SUNLinearSolver S) { return content(S).last_flag; }
-
-int free_solver(SUNLinearSolver S) {
-  if (!S) return SUNLS_SUCCESS;
-  if (S->content) {
-    Content& c = content(S);
-    SUNLinSolFree(c.klu);
-    delete &c;
-    S->content = nullptr;
-  }
-  SUNLinSolFreeEmpty(S);
-  return SUNLS_SUCCESS;
 }
 
 }  // namespace
@@ -103,14 +87,7 @@ SUNLinearSolver make_condensed_block_solver(SUNMatrix pattern, SUNContext ctx, b
     SUNLinSolFreeEmpty(S);
     return nullptr;
   }
-  S->content = c;
-  S->ops->gettype = get_type;
-  S->ops->getid = get_id;
-  S->ops->initialize = initialize;
-  S->ops->setup = setup;
-  S->ops->solve = solve;
-  S->ops->lastflag = last_flag;
-  S->ops->free = free_solver;
+  install_direct_solver(S, c, {initialize, setup, solve});
   return S;
 }
 

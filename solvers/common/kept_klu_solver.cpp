@@ -7,10 +7,11 @@
 #include <new>
 #include <stdexcept>
 #include <type_traits>
-#include <vector>
 
 #include <klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
+
+#include "direct_solver_shell.hpp"
 
 namespace rodlab::solvers::sundials {
 namespace {
@@ -19,20 +20,24 @@ static_assert(std::is_same_v<sunindextype, SuiteSparse_long>,
               "the kept KLU solver needs SUNDIALS built with 64-bit indices (klu_l_*)");
 
 struct Content {
+  Content() = default;
+  Content(const Content&) = delete;
+  Content& operator=(const Content&) = delete;
+  ~Content() {
+    if (numeric) klu_l_free_numeric(&numeric, &common);
+    if (symbolic) klu_l_free_symbolic(&symbolic, &common);
+  }
   long n = 0;
   klu_l_common common{};
   klu_l_symbolic* symbolic = nullptr;
   klu_l_numeric* numeric = nullptr;
-  std::vector<double> factorised;  ///< the values of the last factorised matrix
-  bool keep_factors = true;        ///< across KINSol calls
+  FactorisedValues factorised;  ///< the values of the last factorised matrix
+  bool keep_factors = true;     ///< across KINSol calls
   int last_flag = SUNLS_SUCCESS;
   KeptKluCounts counts;
 };
 
 Content& content(SUNLinearSolver S) { return *static_cast<Content*>(S->content); }
-
-SUNLinearSolver_Type get_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
-SUNLinearSolver_ID get_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
 
 /// KINSOL calls this at the start of every KINSol: the analysis is kept, and the factors too
 /// with keep_factors (else the call's first setup factorises afresh).
@@ -40,7 +45,7 @@ int initialize(SUNLinearSolver S) {
   Content& c = content(S);
   if (!c.keep_factors) {
     if (c.numeric) klu_l_free_numeric(&c.numeric, &c.common);
-    c.factorised.clear();
+    c.factorised.forget();
   }
   return c.last_flag = SUNLS_SUCCESS;
 }
@@ -66,7 +71,7 @@ int setup(SUNLinearSolver S, SUNMatrix A) {
     if (!c.symbolic) return c.last_flag = SUNLS_PACKAGE_FAIL_UNREC;
   }
   // The matrix factorised last (a Jacobian kept across solves): the factors are still right.
-  if (c.numeric && c.factorised.size() == nnz && std::equal(Ax, Ax + nnz, c.factorised.begin())) {
+  if (c.numeric && c.factorised.same(Ax, nnz)) {
     ++c.counts.skipped;
     return c.last_flag = SUNLS_SUCCESS;
   }
@@ -81,12 +86,12 @@ int setup(SUNLinearSolver S, SUNMatrix A) {
   }
   if (!ok) ok = factor(c, Ap, Ai, Ax);
   if (!ok) {
-    c.factorised.clear();
+    c.factorised.forget();
     // A singular matrix is recoverable (KINSOL may retry with a new Jacobian).
     return c.last_flag = c.common.status == KLU_SINGULAR ? SUNLS_PACKAGE_FAIL_REC
                                                         : SUNLS_PACKAGE_FAIL_UNREC;
   }
-  c.factorised.assign(Ax, Ax + nnz);
+  c.factorised.remember(Ax, nnz);
   return c.last_flag = SUNLS_SUCCESS;
 }
 
@@ -98,20 +103,6 @@ int solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, double) {
   return c.last_flag = ok == 1 ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_REC;
 }
 
-sunindextype last_flag(SUNLinearSolver S) { return content(S).last_flag; }
-
-int free_solver(SUNLinearSolver S) {
-  if (!S) return SUNLS_SUCCESS;
-  if (S->content) {
-    Content& c = content(S);
-    if (c.numeric) klu_l_free_numeric(&c.numeric, &c.common);
-    if (c.symbolic) klu_l_free_symbolic(&c.symbolic, &c.common);
-    delete &c;
-    S->content = nullptr;
-  }
-  SUNLinSolFreeEmpty(S);
-  return SUNLS_SUCCESS;
-}
 
 // --- copies of the analysis and the factors (assign_kept_klu) -------------------------------
 // The layout is klu.h's; the sizes are those klu_l_free_symbolic and klu_l_free_numeric free
@@ -264,14 +255,7 @@ SUNLinearSolver make_kept_klu_solver(long n, SUNContext ctx, bool natural_order,
   klu_l_defaults(&c->common);
   // KLU: 0 AMD, 1 COLAMD, 2 no P and Q given (klu_analyze takes the natural order)
   if (natural_order) c->common.ordering = 2;
-  S->content = c;
-  S->ops->gettype = get_type;
-  S->ops->getid = get_id;
-  S->ops->initialize = initialize;
-  S->ops->setup = setup;
-  S->ops->solve = solve;
-  S->ops->lastflag = last_flag;
-  S->ops->free = free_solver;
+  install_direct_solver(S, c, {initialize, setup, solve});
   return S;
 }
 
@@ -290,7 +274,7 @@ void assign_kept_klu(SUNLinearSolver dst, SUNLinearSolver src) {
     copy_numeric(d.numeric, *s.numeric, d.common);
   else if (d.numeric)
     klu_l_free_numeric(&d.numeric, &d.common);
-  d.factorised = s.factorised;  // same size after the first copy: no allocation
+  d.factorised = s.factorised;  // the same size after the first copy: no allocation
   d.last_flag = s.last_flag;
   d.counts = s.counts;
 }
