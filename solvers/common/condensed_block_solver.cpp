@@ -25,7 +25,6 @@ struct Content {
   bool use_klu = false;           ///< the last factorisation was KLU's
   bool factored = false;          ///< the factors are valid
   bool keep_factors = true;       ///< across KINSol calls
-  FactorisedValues factorised;    ///< the values of the last factorised matrix
   int last_flag = SUNLS_SUCCESS;
 };
 
@@ -33,7 +32,7 @@ Content& content(SUNLinearSolver S) { return *static_cast<Content*>(S->content);
 
 int initialize(SUNLinearSolver S) {
   Content& c = content(S);
-  if (!c.keep_factors) c.factored = false, c.factorised.forget();
+  if (!c.keep_factors) c.factored = false;
   SUNLinSolInitialize(c.klu);
   return c.last_flag = SUNLS_SUCCESS;
 }
@@ -42,18 +41,15 @@ int setup(SUNLinearSolver S, SUNMatrix A) {
   Content& c = content(S);
   if (SUNSparseMatrix_SparseType(A) != CSC_MAT || SUNSparseMatrix_Columns(A) != c.lu.size())
     return c.last_flag = SUNLS_ILL_INPUT;
-  const double* Ax = SUNSparseMatrix_Data(A);
-  const auto nnz = static_cast<std::size_t>(SUNSparseMatrix_IndexPointers(A)[c.lu.size()]);
-  // The matrix factorised last (a Jacobian kept across solves): the factors are still right.
-  if (c.factored && c.factorised.same(Ax, nnz)) return c.last_flag = SUNLS_SUCCESS;
+  // Every setup factorises: its users call it for new values only (a kept Jacobian's factors
+  // are kept by not calling it: KINSetNoInitSetup, collocation's reuse_factorisation).
   c.factored = false;
-  c.use_klu = !c.lu.factor(Ax);
+  c.use_klu = !c.lu.factor(SUNSparseMatrix_Data(A));
   if (c.use_klu) {
     const int flag = SUNLinSolSetup(c.klu, A);
     if (flag != SUNLS_SUCCESS) return c.last_flag = flag;
   }
   c.factored = true;
-  c.factorised.remember(Ax, nnz);
   return c.last_flag = SUNLS_SUCCESS;
 }
 
@@ -101,7 +97,6 @@ void assign_condensed_block(SUNLinearSolver dst, SUNLinearSolver src) {
   assign_kept_klu(d.klu, s.klu);
   d.use_klu = s.use_klu;
   d.factored = s.factored;
-  d.factorised = s.factorised;
   d.last_flag = s.last_flag;
 }
 

@@ -4,8 +4,9 @@
 // condenses the pose rows and solves the 6 x 6 block-tridiagonal Schur system by block LU
 // (condensed_block_lu.hpp), and falls back to the kept KLU solver (kept_klu_solver.hpp) for a
 // matrix that breaks that structure or whose pivot blocks look ill-conditioned. Like the kept
-// KLU solver it keeps its factors across KINSol calls (`keep_factors`) and skips the
-// factorisation when the matrix equals the one factorised last.
+// KLU solver it keeps its factors across KINSol calls (`keep_factors`); unlike it, every setup
+// factorises (its callers call setup for new values only, and refactoring a matrix gives the
+// same factors: the KLU fallback compares values because its refactorisation keeps pivots).
 // Private to solvers/common (includes SUNDIALS headers).
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
@@ -22,8 +23,8 @@ inline constexpr int kCondensedBlock = 13, kCondensedLocal = 7;
 /// of that form or on allocation failure.
 SUNLinearSolver make_condensed_block_solver(SUNMatrix pattern, SUNContext ctx, bool keep_factors);
 
-/// Makes dst's kept state (factors, the values factorised last, the fallback's analysis and
-/// factors) a copy of src's, both condensed block solvers of the same pattern, so that
+/// Makes dst's kept state (factors, the fallback's analysis, factors and values factorised
+/// last) a copy of src's, both condensed block solvers of the same pattern, so that
 /// dst's next setups and solves repeat src's bit for bit (control snapshots); no allocation once
 /// dst's arrays hold src's. Throws std::invalid_argument for solvers of different sizes.
 void assign_condensed_block(SUNLinearSolver dst, SUNLinearSolver src);

@@ -1,12 +1,8 @@
 #pragma once
-// What rodlab's own direct SUNLinearSolvers (kept_klu_solver.cpp, condensed_block_solver.cpp)
-// share: the SUNLinearSolver shell around a content object that the solver owns, and the record
-// of the matrix values factorised last, by which a setup with the same values (a Jacobian kept
-// across KINSol calls) keeps its factors. Private to solvers/common (includes SUNDIALS headers).
-#include <algorithm>
-#include <cstddef>
-#include <vector>
-
+// The SUNLinearSolver shell of rodlab's own direct solvers (kept_klu_solver.cpp,
+// condensed_block_solver.cpp): a content object that the solver owns, and the operations that
+// every direct solver of custom ID has alike. Private to solvers/common (includes SUNDIALS
+// headers).
 #include <sundials/sundials_linearsolver.h>
 
 namespace rodlab::solvers::sundials {
@@ -40,23 +36,5 @@ void install_direct_solver(SUNLinearSolver S, Content* content, const DirectSolv
     return SUNLS_SUCCESS;
   };
 }
-
-/// The values of the matrix factorised last (CSC data, the pattern fixed).
-class FactorisedValues {
- public:
-  /// Whether `values` (nnz of them) are those factorised last.
-  bool same(const double* values, std::size_t nnz) const {
-    return valid_ && values_.size() == nnz && std::equal(values, values + nnz, values_.begin());
-  }
-  void remember(const double* values, std::size_t nnz) {
-    values_.assign(values, values + nnz);  // the same size after the first: no allocation
-    valid_ = true;
-  }
-  void forget() { valid_ = false; }
-
- private:
-  std::vector<double> values_;
-  bool valid_ = false;
-};
 
 }  // namespace rodlab::solvers::sundials

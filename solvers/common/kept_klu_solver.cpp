@@ -7,6 +7,7 @@
 #include <new>
 #include <stdexcept>
 #include <type_traits>
+#include <vector>
 
 #include <klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
@@ -18,6 +19,24 @@ namespace {
 
 static_assert(std::is_same_v<sunindextype, SuiteSparse_long>,
               "the kept KLU solver needs SUNDIALS built with 64-bit indices (klu_l_*)");
+
+/// The values of the matrix factorised last (CSC data, the pattern fixed).
+class FactorisedValues {
+ public:
+  /// Whether `values` (nnz of them) are those factorised last.
+  bool same(const double* values, std::size_t nnz) const {
+    return valid_ && values_.size() == nnz && std::equal(values, values + nnz, values_.begin());
+  }
+  void remember(const double* values, std::size_t nnz) {
+    values_.assign(values, values + nnz);  // the same size after the first: no allocation
+    valid_ = true;
+  }
+  void forget() { valid_ = false; }
+
+ private:
+  std::vector<double> values_;
+  bool valid_ = false;
+};
 
 struct Content {
   Content() = default;
