@@ -3,6 +3,7 @@
 // is handed to study_control.cpp. This file reads and checks the
 // command line and the scene (nothing runs and nothing is written until everything is
 // valid), then hands over to the study functions (study_*.hpp) and writes their outputs.
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,8 @@
 
 #include "rodlab/check.hpp"
 #include "rodlab/io/text_format.hpp"
+#include "rodlab/solvers/dynamics/corrected_grid.hpp"
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 
 #include "command.hpp"
 #include "common_options.hpp"
@@ -44,7 +47,8 @@ constexpr OptionSpec kStudyTolOption{
     "recommend: the tip error to reach [m]; other studies: the solver tolerance "
     "(default: solver.tol)"};
 constexpr std::array<std::string_view, 3> kRefinements{"time", "joint", "grid"};
-constexpr std::array<OptionSpec, 14> kSweepOptions{
+constexpr std::array<std::string_view, 3> kGrids{"euler", "staggered", "corrected"};
+constexpr std::array<OptionSpec, 15> kSweepOptions{
     OptionSpec{"--schemes", "A,B,...",
                "schemes to compare, comma-separated (one problem class); default: all of the problem class"},
     OptionSpec{"--nodes", "N1,N2,...",
@@ -56,6 +60,10 @@ constexpr std::array<OptionSpec, 14> kSweepOptions{
                "error), N and dt together, dt ~ ds (joint), or every dt at every N (grid), "
                "both against ida at a 4x finer N (the error of space and time; recommend then "
                "compares the largest tip error over the run)"},
+    OptionSpec{"--grids", "G1,G2,...",
+               "dynamics (not stability): the spatial grids to sweep, each against ida on its "
+               "own grid: euler (implicit-midpoint, bdf-alpha), staggered, corrected; default: "
+               "solver.grid, else staggered"},
     OptionSpec{"--reference", "NAME", "reference solution: kinsol, ida or chebyshev"},
     kStudyTolOption,
     OptionSpec{"--budget-ms", "X", "recommend: time budget per run in milliseconds, > 0"},
@@ -123,14 +131,13 @@ std::optional<Problem> check_problem_class(OptionReader& reader, const std::stri
       decided_by = "--reference " + *reference;
     }
   }
-  const bool has_dt = reader.arguments().has("--dt");
-  const bool has_t_end = reader.arguments().has("--t-end");
-  const bool has_refine = reader.arguments().has("--refine");
-  if ((has_dt || has_t_end || has_refine) && problem == Problem::statics)
-    reader.problem(std::string(has_dt ? "--dt" : has_t_end ? "--t-end" : "--refine") +
-                   ": only dynamics studies step in time, and " + decided_by +
-                   " makes this a statics study");
-  if (!problem && (has_dt || has_t_end || has_refine)) problem = Problem::dynamics;
+  const char* dynamics_option = nullptr;
+  for (const char* option : {"--dt", "--t-end", "--refine", "--grids"})
+    if (!dynamics_option && reader.arguments().has(option)) dynamics_option = option;
+  if (dynamics_option && problem == Problem::statics)
+    reader.problem(std::string(dynamics_option) + ": only dynamics studies step in time, and " +
+                   decided_by + " makes this a statics study");
+  if (!problem && dynamics_option) problem = Problem::dynamics;
   return problem;
 }
 
@@ -147,6 +154,8 @@ void check_kind_options(OptionReader& reader, const std::string& kind) {
       refine && *refine != "time" && a.value("--reference") && *a.value("--reference") != "ida")
     reader.problem("--refine " + *refine + ": the reference is ida at a finer N (got --reference " +
                    *a.value("--reference") + ")");
+  if (a.has("--grids") && kind == "stability")
+    reader.problem("--grids: a stability study measures the scene's grid (solver.grid)");
   if (a.has("--moduli") && kind != "stability")
     reader.problem("--moduli: only `rodlab study stability` varies Young's modulus");
   for (const auto& o : kStudyControlOptions)
@@ -174,7 +183,9 @@ std::vector<solvers::SchemeInfo> chosen_schemes(const OptionReader& reader, Prob
 }
 
 std::string describe(const study::Candidate& c) {
-  std::string out = c.scheme + ", N = " + std::to_string(c.nodes);
+  std::string out = c.scheme;
+  if (!c.grid.empty()) out += " (" + c.grid + " grid)";
+  out += ", N = " + std::to_string(c.nodes);
   if (c.dt) out += ", dt = " + io::format_number(*c.dt) + " s";
   out += ": tip error " + io::format_number(c.error) + " m, median wall time " +
          io::format_number(c.wall_time_s * 1e3) + " ms (" + std::to_string(c.repeats) +
@@ -185,6 +196,7 @@ std::string describe(const study::Candidate& c) {
 Json candidate_json(const std::optional<study::Candidate>& c) {
   if (!c) return nullptr;
   return {{"scheme", c->scheme},
+          {"grid", c->grid.empty() ? Json(nullptr) : Json(c->grid)},
           {"nodes", c->nodes},
           {"dt", c->dt ? Json(*c->dt) : Json(nullptr)},
           {"error", c->error},
@@ -212,7 +224,9 @@ void print_pareto(const study::Sweep& sweep, const std::vector<bool>& pareto,
   std::cout << study::sweep_table(sweep, true) << "\nPareto front (error against median wall time):\n";
   for (std::size_t i = 0; i < sweep.rows.size(); ++i)
     if (pareto[i])
-      std::cout << "  " << sweep.rows[i].spec.scheme << " N = " << sweep.rows[i].spec.nodes
+      std::cout << "  "
+                << study::scheme_label(sweep, sweep.rows[i].spec.scheme, sweep.rows[i].grid)
+                << " N = " << sweep.rows[i].spec.nodes
                 << (settings.problem == Problem::dynamics
                         ? " dt = " + io::format_number(sweep.rows[i].run.dt)
                         : std::string())
@@ -319,6 +333,35 @@ void check_grid_options(OptionReader& reader, std::optional<Problem> problem,
                    std::to_string(dts->size()));
 }
 
+/// --grids: known grids, each taken by one of the schemes and by the scene (corrected: a
+/// Cosserat rod without actuators); throws UsageError naming --grids.
+std::vector<std::string> checked_grids(const std::vector<std::string>& names,
+                                       const study::Settings& settings) {
+  std::vector<std::string> grids;
+  for (const auto& grid : names) {
+    if (std::find(kGrids.begin(), kGrids.end(), grid) == kGrids.end())
+      throw UsageError("--grids: unknown grid '" + grid + "'; the grids are euler, staggered, "
+                       "corrected");
+    if (std::find(grids.begin(), grids.end(), grid) != grids.end()) continue;
+    bool taken = false;
+    for (const auto& scheme : settings.schemes)
+      taken = taken || study::takes_grid(scheme.name, grid);
+    if (!taken)
+      throw UsageError("--grids: " + grid + " is a grid of implicit-midpoint and bdf-alpha, "
+                       "and no scheme of the study marches it");
+    if (grid == "corrected") {
+      try {
+        solvers::dynamics::require_corrected_grid(
+            solvers::dynamics::DynamicProblem::from_scene(settings.scene));
+      } catch (const std::invalid_argument& e) {
+        throw UsageError("--grids: " + std::string(e.what()));
+      }
+    }
+    grids.push_back(grid);
+  }
+  return grids;
+}
+
 /// A dynamics study's run length: --t-end, else dynamics.t_end, else 1 s for stability; every
 /// --dt must fit in it.
 double run_length(const study::Settings& settings, const std::string& kind,
@@ -407,6 +450,8 @@ int run(const Invocation& inv) {
   settings.command_line = inv.command_line;
   if (settings.problem == Problem::dynamics)
     settings.t_end = run_length(settings, kind, t_end, options.scene_path);
+  if (const auto grids = inv.args.value("--grids"))
+    settings.grids = checked_grids(split_list(*grids), settings);
   const std::string dir =
       out_dir ? out_dir->string()
               : "out/study-" + std::string(recommend ? "work-precision" : kind);
@@ -456,9 +501,10 @@ const Command& study_command() {
       "                   training; --targets, --seed: the reach-any evaluation targets\n"
       "                   (DIR/table.md, study.json, policies/, results/, figures/;\n"
       "                   docs/learning.md)\n"
-      "A study is a statics study unless its schemes, its reference, --dt or --t-end make it a\n"
-      "dynamics one (stability always is). Without --schemes, every scheme of the\n"
-      "class takes part. The options and the scene are checked before anything runs.\n"
+      "A study is a statics study unless its schemes, its reference, --dt, --t-end, --refine or\n"
+      "--grids make it a dynamics one (stability always is). Without --schemes, every scheme of\n"
+      "the class takes part; without --grids, a dynamics study runs on the scene's grid. The\n"
+      "options and the scene are checked before anything runs.\n"
       "--jobs N runs N cases at once; under `mpirun -n K` the cases are split across the ranks\n"
       "and rank 0 writes the merged outputs (docs/studies.md).\n"
       "\n"

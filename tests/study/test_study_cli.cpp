@@ -15,9 +15,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -108,6 +110,17 @@ BOOST_AUTO_TEST_CASE(bad_input_exits_2_and_writes_nothing) {
                    {"--refine", "stability"});
   expect_bad_input(box, "study recommend " + dyn + " --refine grid --reference kinsol --tol 1 --out s",
                    {"--refine grid", "ida"});
+  expect_bad_input(box, "study convergence " + dyn + " --grids staggered,fine --out s",
+                   {"--grids", "fine"});
+  expect_bad_input(box, "study convergence " + dyn + " --schemes variational --grids euler --out s",
+                   {"--grids", "euler"});
+  expect_bad_input(box, "study convergence " + dyn + " --grids corrected --set rod.model=kirchhoff"
+                   " --out s", {"--grids", "cosserat"});
+  expect_bad_input(box, "study stability " + dyn + " --grids staggered --out s",
+                   {"--grids", "stability"});
+  expect_bad_input(box,
+                   "study convergence " + scene + " --schemes kinsol --grids staggered --out s",
+                   {"--grids", "statics"});
 }
 
 // Reference: design orders 2 (explicit midpoint RKMK) and 4 (RK4 Munthe-Kaas); kinsol at N = 324.
@@ -231,6 +244,59 @@ BOOST_AUTO_TEST_CASE(corrected_grid_sweep_is_measured_against_ida) {
   }
   BOOST_TEST(references >= 1);
   BOOST_TEST(longest > 1e-4, "the corrected grid's automatic step at N = 4: " << longest);
+}
+
+namespace {
+/// The study rows of `study` on `grid`, as (scheme, N, dt) -> (error, max_error).
+std::map<std::tuple<std::string, int, double>, std::pair<double, double>> rows_on(
+    const Json& study, const std::string& grid) {
+  std::map<std::tuple<std::string, int, double>, std::pair<double, double>> out;
+  for (const auto& row : study["rows"])
+    if (row["role"] == "study" && row["grid"] == grid)
+      out[{row["scheme"].get<std::string>(), row["nodes"].get<int>(), row["dt"].get<double>()}] =
+          {row["error"].get<double>(), row["max_error"].get<double>()};
+  return out;
+}
+}  // namespace
+
+// Reference: the same sweep on one grid at a time (--set solver.grid=G): --grids G1,G2 must give
+// each grid's rows exactly (the runs are deterministic), each against ida on its own grid, the
+// Euler grid's against ida on the staggered grid (ida does not march it, nor does variational:
+// their rows say staggered), no reference twice.
+BOOST_AUTO_TEST_CASE(grids_sweep_each_grid_as_its_own_study) {
+  Sandbox box;
+  const std::string sweep = "study work-precision " + quote(kDynamicScene) +
+                            " --refine grid --t-end 0.05 --nodes 4,6 --repeats 1"
+                            " --schemes variational,implicit-midpoint";
+  const Run all = box.run(sweep + " --grids staggered,corrected,euler --out all");
+  BOOST_TEST_CONTEXT(all.out << all.err) { BOOST_REQUIRE(all.status == 0); }
+  const Json study = Json::parse(read(box.work / "all" / "study.json"));
+  BOOST_TEST(study["settings"]["grids"] == Json({"staggered", "corrected", "euler"}));
+  std::set<std::tuple<std::string, double>> references;
+  for (const auto& row : study["rows"]) {
+    BOOST_TEST(row["converged"] == true, row.dump());
+    if (row["role"] != "reference") continue;
+    BOOST_TEST(row["grid"] != "euler", row.dump());
+    BOOST_TEST(references.insert({row["grid"].get<std::string>(), row["dt"].get<double>()}).second,
+               "a reference run twice: " << row.dump());
+  }
+  for (const std::string grid : {"staggered", "corrected", "euler"}) {
+    const Run one = box.run(sweep + " --set solver.grid=" + grid + " --out " + grid);
+    BOOST_TEST_CONTEXT(one.out << one.err) { BOOST_REQUIRE(one.status == 0); }
+    const auto expected = rows_on(Json::parse(read(box.work / grid / "study.json")), grid);
+    const auto got = rows_on(study, grid);
+    BOOST_TEST(!got.empty(), grid);
+    BOOST_TEST(got.size() == expected.size(), grid);
+    for (const auto& [key, errors] : expected) {
+      BOOST_REQUIRE_MESSAGE(got.count(key), grid << ": " << std::get<0>(key) << " N = "
+                                                 << std::get<1>(key)
+                                                 << " dt = " << std::get<2>(key));
+      BOOST_TEST(got.at(key).first == errors.first, grid);
+      BOOST_TEST(got.at(key).second == errors.second, grid);
+    }
+  }
+  const std::string csv_header = read(box.work / "all" / "work_precision.csv").substr(0, 200);
+  BOOST_TEST(csv_header.find(",grid\n") != std::string::npos, csv_header);
 }
 
 BOOST_AUTO_TEST_CASE(grid_refinement_measures_space_and_time_together) {

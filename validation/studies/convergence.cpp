@@ -18,6 +18,7 @@ struct Plan {
   std::vector<RunSpec> specs;
   std::vector<std::string> roles;
   std::vector<int> reference_of;  ///< index of the spec a spec is compared with; -1: none
+  std::vector<std::string> grids;  ///< dynamics: the run's grid (plan_grids); empty: the scene's
   Json reference;
 
   /// Appends a run; returns its index.
@@ -26,6 +27,7 @@ struct Plan {
     specs.push_back(std::move(spec));
     roles.emplace_back(role);
     reference_of.push_back(reference);
+    grids.emplace_back();
     return static_cast<int>(specs.size()) - 1;
   }
 };
@@ -169,6 +171,65 @@ Plan plan_dynamics_grid(const Settings& s) {
   return plan;
 }
 
+/// The plan of one grid's sweep (or of the scene's grid).
+Plan plan_for(const Settings& s) {
+  const bool joint = s.problem == Problem::dynamics && s.refine == Refinement::joint;
+  const bool grid = s.problem == Problem::dynamics && s.refine == Refinement::grid;
+  return s.problem == Problem::statics ? plan_statics(s)
+         : joint                       ? plan_dynamics_joint(s)
+         : grid                        ? plan_dynamics_grid(s)
+                                       : plan_dynamics(s);
+}
+
+/// Whether two planned runs are the same run (a reference two grids share).
+bool same_run(const Plan& a, std::size_t i, const Plan& b, std::size_t j) {
+  const RunSpec &x = a.specs[i], &y = b.specs[j];
+  return a.roles[i] == b.roles[j] && a.grids[i] == b.grids[j] && x.scheme == y.scheme &&
+         x.nodes == y.nodes && x.dt == y.dt && x.t_end == y.t_end && x.tol == y.tol &&
+         x.repeats == y.repeats && x.keep_series == y.keep_series;
+}
+
+/// Several grids: one plan per grid (settings_on_grid, with the schemes that take the grid),
+/// its runs on that grid, one after the other; the reference says each grid's. A run on a grid
+/// it does not take (ida on the Euler grid) is on the staggered grid, and a reference that an
+/// earlier grid's plan already has is not run again.
+Plan plan_grids(const Settings& s) {
+  Plan all;
+  Json references = Json::array();
+  std::string description;
+  for (const auto& grid : s.grids) {
+    Settings on = settings_on_grid(s, grid);
+    std::erase_if(on.schemes, [&](const auto& scheme) { return !takes_grid(scheme.name, grid); });
+    if (on.schemes.empty()) continue;
+    Plan plan = plan_for(on);
+    std::vector<int> index(plan.specs.size(), -1);  // plan's runs in `all`
+    for (std::size_t i = 0; i < plan.specs.size(); ++i) {
+      plan.grids[i] = takes_grid(plan.specs[i].scheme, grid) ? grid : "staggered";
+      for (std::size_t j = 0; j < all.specs.size() && index[i] < 0; ++j)
+        if (plan.roles[i] == "reference" && same_run(plan, i, all, j))
+          index[i] = static_cast<int>(j);
+      if (index[i] >= 0) continue;
+      index[i] = static_cast<int>(all.specs.size());
+      all.specs.push_back(plan.specs[i]);
+      all.roles.push_back(plan.roles[i]);
+      all.grids.push_back(plan.grids[i]);
+      all.reference_of.push_back(-1);
+    }
+    for (std::size_t i = 0; i < plan.specs.size(); ++i)
+      if (plan.reference_of[i] >= 0)
+        all.reference_of[static_cast<std::size_t>(index[i])] =
+            index[static_cast<std::size_t>(plan.reference_of[i])];
+    plan.reference["grid"] = grid;
+    if (!takes_grid("ida", grid)) plan.reference["reference_grid"] = "staggered";
+    references.push_back(plan.reference);
+    description += (description.empty() ? "" : "; ") + grid + " grid: " +
+                   plan.reference.value("description", "") +
+                   (takes_grid("ida", grid) ? "" : " (ida on the staggered grid)");
+  }
+  all.reference = {{"kind", "per grid"}, {"grids", references}, {"description", description}};
+  return all;
+}
+
 /// Largest tip distance over the output times the run shares with its reference.
 double max_common_error(const RunRecord& run, const RunRecord& ref, double t_end) {
   double worst = 0.0;
@@ -206,8 +267,15 @@ void measure_errors(const Settings& s, const Plan& plan, Sweep& sweep) {
   }
 }
 
+/// What a group of study rows shares: the scheme, the grid (dynamics) and N (time refinement).
+struct GroupKey {
+  std::string scheme, grid;
+  int nodes = 0;
+  auto operator<=>(const GroupKey&) const = default;
+};
+
 /// The observed order of one group of study rows (one scheme, or one scheme and N).
-SchemeOrder fit_group(const Settings& s, bool joint, const std::pair<std::string, int>& key,
+SchemeOrder fit_group(const Settings& s, bool joint, const GroupKey& key,
                       const std::vector<std::size_t>& members, Sweep& sweep) {
   std::vector<FitPoint> points;
   for (const auto i : members) {
@@ -215,19 +283,18 @@ SchemeOrder fit_group(const Settings& s, bool joint, const std::pair<std::string
     points.push_back({row.h, row.error, row.run.converged && std::isfinite(row.error)});
   }
   SchemeOrder o;
-  o.scheme = key.first;
-  o.nodes = key.second;
+  o.scheme = key.scheme;
+  o.grid = key.grid;
+  o.nodes = key.nodes;
   o.variable = s.problem == Problem::statics ? "ds" : joint ? "ds (dt ~ ds)" : "dt";
-  if (const auto info = solvers::find_scheme(key.first)) o.expected = std::string(info->order);
+  if (const auto info = solvers::find_scheme(key.scheme)) o.expected = std::string(info->order);
   // the catalogue's order of the shooting schemes is that of their default, staggered grid; the
   // thesis' Euler grid (solver.grid: euler) is first order in s
-  if (s.scene.solver.grid == std::optional<std::string>("euler") &&
-      (key.first == "implicit-midpoint" || key.first == "bdf-alpha"))
-    o.expected = "2 (t) / 1 (s)";
+  if (key.grid == "euler" && takes_grid(key.scheme, "euler")) o.expected = "2 (t) / 1 (s)";
   // variational's catalogue order is that of its default time rule, verlet; the thesis'
   // symplectic Euler (solver.variational_step: symplectic-euler) is first order in t
   if (s.scene.solver.variational_step == std::optional<std::string>("symplectic-euler") &&
-      key.first == "variational")
+      key.scheme == "variational")
     o.expected = "1 (t) / 2 (s)";
   o.fit = fit_order(points, sweep.rounding_floor);
   o.h_max = 0.0;
@@ -242,16 +309,16 @@ SchemeOrder fit_group(const Settings& s, bool joint, const std::pair<std::string
   return o;
 }
 
-/// Orders: statics and joint refinement per scheme (in ds), dynamics per scheme and N (in dt).
+/// Orders: statics and joint refinement per scheme (in ds), dynamics per scheme and N (in dt);
+/// each grid's apart.
 void fit_orders(const Settings& s, bool joint, Sweep& sweep) {
-  std::map<std::pair<std::string, int>, std::vector<std::size_t>> groups;
-  std::vector<std::pair<std::string, int>> order;
+  std::map<GroupKey, std::vector<std::size_t>> groups;
+  std::vector<GroupKey> order;
   for (std::size_t i = 0; i < sweep.rows.size(); ++i) {
     const auto& row = sweep.rows[i];
     if (row.role != "study") continue;
-    const std::pair<std::string, int> key{row.spec.scheme,
-                                          s.problem == Problem::statics || joint ? 0
-                                                                                 : row.spec.nodes};
+    const GroupKey key{row.spec.scheme, row.grid,
+                       s.problem == Problem::statics || joint ? 0 : row.spec.nodes};
     if (!groups.count(key)) order.push_back(key);
     groups[key].push_back(i);
   }
@@ -263,16 +330,18 @@ void fit_orders(const Settings& s, bool joint, Sweep& sweep) {
 Sweep run_sweep(const Settings& s, const Executor& executor) {
   const bool joint = s.problem == Problem::dynamics && s.refine == Refinement::joint;
   const bool grid = s.problem == Problem::dynamics && s.refine == Refinement::grid;
-  const Plan plan = s.problem == Problem::statics ? plan_statics(s)
-                    : joint                      ? plan_dynamics_joint(s)
-                    : grid                       ? plan_dynamics_grid(s)
-                                                 : plan_dynamics(s);
+  const bool by_grid = s.problem == Problem::dynamics && !s.grids.empty();
+  const Plan plan = by_grid ? plan_grids(s) : plan_for(s);
   std::vector<std::function<Json()>> tasks;
-  for (const auto& spec : plan.specs)
-    tasks.push_back([&s, spec] { return to_json(run_case(s.scene, spec)); });
+  for (std::size_t i = 0; i < plan.specs.size(); ++i)
+    tasks.push_back([&s, spec = plan.specs[i], grid = plan.grids[i]] {
+      if (grid.empty()) return to_json(run_case(s.scene, spec));
+      return to_json(run_case(settings_on_grid(s, grid).scene, spec));
+    });
   const auto results = run_tasks(tasks, executor);
   Sweep sweep;
   sweep.reference = plan.reference;
+  sweep.by_grid = by_grid;
   if (results.empty()) return sweep;  // not rank 0
 
   const double length = s.scene.rod.length;
@@ -281,6 +350,10 @@ Sweep run_sweep(const Settings& s, const Executor& executor) {
     SweepRow row;
     row.role = plan.roles[i];
     row.spec = plan.specs[i];
+    if (s.problem == Problem::dynamics) {  // a scheme that does not march a grid: staggered
+      const std::string grid = plan.grids[i].empty() ? scene_grid(s) : plan.grids[i];
+      row.grid = takes_grid(row.spec.scheme, grid) ? grid : "staggered";
+    }
     row.run = record_from_json(results[i]);
     row.h = s.problem == Problem::statics || joint ? length / (row.spec.nodes - 1) : row.run.dt;
     if (row.run.dt == 0.0 && s.problem == Problem::dynamics && !joint) row.h = row.spec.dt;
@@ -297,7 +370,7 @@ Sweep run_sweep(const Settings& s, const Executor& executor) {
 std::string convergence_csv(const Sweep& sweep) {
   std::string out =
       "scheme,role,nodes,dt,h,tip_x,tip_y,tip_z,error,max_error,in_fit,converged,reason,"
-      "wall_time_s,wall_time_min_s,repeats,steps\n";
+      "wall_time_s,wall_time_min_s,repeats,steps,grid\n";
   for (const auto& r : sweep.rows) {
     const bool dyn = r.spec.problem == solvers::Problem::dynamics;
     out += csv_text(r.spec.scheme) + ',' + r.role + ',' + std::to_string(r.spec.nodes) + ',' +
@@ -308,18 +381,19 @@ std::string convergence_csv(const Sweep& sweep) {
            (r.run.converged ? "true" : "false") + ',' +
            csv_text(r.note.empty() ? r.run.reason : r.note) + ',' + csv_number(r.run.wall_time_s) +
            ',' + csv_number(r.run.wall_time_min_s) + ',' + std::to_string(r.run.repeats) + ',' +
-           (dyn ? std::to_string(r.run.steps) : "") + '\n';
+           (dyn ? std::to_string(r.run.steps) : "") + ',' + r.grid + '\n';
   }
   return out;
 }
 
 std::string orders_csv(const Sweep& sweep) {
-  std::string out = "scheme,nodes,variable,expected_order,observed_order,points,h_max,h_min,note\n";
+  std::string out =
+      "scheme,nodes,variable,expected_order,observed_order,points,h_max,h_min,note,grid\n";
   for (const auto& o : sweep.orders)
     out += csv_text(o.scheme) + ',' + (o.nodes > 0 ? std::to_string(o.nodes) : "") + ',' +
            o.variable + ',' + csv_text(o.expected) + ',' + csv_number(o.fit.order) + ',' +
            std::to_string(o.fit.points) + ',' + csv_number(o.h_max) + ',' + csv_number(o.h_min) +
-           ',' + csv_text(o.fit.note) + '\n';
+           ',' + csv_text(o.fit.note) + ',' + o.grid + '\n';
   return out;
 }
 
@@ -345,7 +419,8 @@ Json sweep_json(const Sweep& sweep, const Settings& settings, const std::string&
                     {"wall_time_s", r.run.wall_time_s},
                     {"wall_time_min_s", r.run.wall_time_min_s},
                     {"repeats", r.run.repeats},
-                    {"steps", r.run.steps}});
+                    {"steps", r.run.steps},
+                    {"grid", dyn ? Json(r.grid) : Json(nullptr)}});
   }
   Json orders = Json::array();
   for (const auto& o : sweep.orders)
@@ -357,7 +432,8 @@ Json sweep_json(const Sweep& sweep, const Settings& settings, const std::string&
                       {"points", o.fit.points},
                       {"h_max", number_or_null(o.h_max)},
                       {"h_min", number_or_null(o.h_min)},
-                      {"note", o.fit.note}});
+                      {"note", o.fit.note},
+                      {"grid", o.grid.empty() ? Json(nullptr) : Json(o.grid)}});
   return Json{{"schema", "rodlab.study/1"},
               {"kind", kind},
               {"scene", settings.scene.name},
@@ -378,17 +454,22 @@ Json sweep_json(const Sweep& sweep, const Settings& settings, const std::string&
               {"failed_runs", sweep.failed}};
 }
 
+/// The scheme's name, and its grid when the sweep has several.
+std::string scheme_label(const Sweep& sweep, const std::string& scheme, const std::string& grid) {
+  return sweep.by_grid ? scheme + " (" + grid + ")" : scheme;
+}
+
 std::string sweep_table(const Sweep& sweep, bool timing) {
   using A = io::TextTable::Align;
   io::TextTable t({A::left, A::left, A::right, A::right, A::right, A::right, A::right, A::left});
   const bool dyn = !sweep.rows.empty() && sweep.rows.front().spec.problem == Problem::dynamics;
-  t.add_row({"scheme", "role", "N", dyn ? "dt [s]" : "", "error [m]",
-             timing ? "median time [s]" : "time [s]", "fit", "status"});
+  t.add_row({sweep.by_grid ? "scheme (grid)" : "scheme", "role", "N", dyn ? "dt [s]" : "",
+             "error [m]", timing ? "median time [s]" : "time [s]", "fit", "status"});
   t.add_rule();
   for (const auto& r : sweep.rows) {
     std::string status = r.run.converged ? "converged" : r.run.reason;
     if (!r.note.empty()) status = r.note;
-    t.add_row({r.spec.scheme, r.role, std::to_string(r.spec.nodes),
+    t.add_row({scheme_label(sweep, r.spec.scheme, r.grid), r.role, std::to_string(r.spec.nodes),
                dyn ? io::format_number(r.run.dt) : "",
                std::isfinite(r.error) ? io::format_number(r.error) : "-",
                io::format_number(r.run.wall_time_s), r.in_fit ? "*" : "", status});
@@ -399,11 +480,12 @@ std::string sweep_table(const Sweep& sweep, bool timing) {
 std::string orders_table(const Sweep& sweep) {
   using A = io::TextTable::Align;
   io::TextTable t({A::left, A::right, A::right, A::right, A::right, A::left});
-  t.add_row({"scheme", "N", "expected order", "observed order", "points", "note"});
+  t.add_row({sweep.by_grid ? "scheme (grid)" : "scheme", "N", "expected order", "observed order",
+             "points", "note"});
   t.add_rule();
   for (const auto& o : sweep.orders)
-    t.add_row({o.scheme, o.nodes > 0 ? std::to_string(o.nodes) : "", o.expected,
-               std::isfinite(o.fit.order) ? io::format_number(o.fit.order) : "-",
+    t.add_row({scheme_label(sweep, o.scheme, o.grid), o.nodes > 0 ? std::to_string(o.nodes) : "",
+               o.expected, std::isfinite(o.fit.order) ? io::format_number(o.fit.order) : "-",
                std::to_string(o.fit.points), o.fit.note});
   return t.render();
 }

@@ -97,6 +97,21 @@ std::vector<double> grid_steps(const Settings& settings, const solvers::SchemeIn
   return steps;
 }
 
+bool takes_grid(std::string_view scheme, std::string_view grid) {
+  return grid != "euler" || scheme == "implicit-midpoint" || scheme == "bdf-alpha";
+}
+
+std::string scene_grid(const Settings& settings) {
+  return settings.scene.solver.grid.value_or("staggered");
+}
+
+Settings settings_on_grid(const Settings& settings, const std::string& grid) {
+  Settings on = settings;
+  on.scene.solver.grid = grid;
+  on.grids.clear();
+  return on;
+}
+
 std::string_view to_string(Refinement refine) {
   return refine == Refinement::joint ? "joint" : refine == Refinement::grid ? "grid" : "time";
 }
@@ -120,19 +135,21 @@ std::string file_text(const std::string& path) {
 Json settings_json(const Settings& s) {
   Json schemes = Json::array();
   for (const auto& scheme : s.schemes) schemes.push_back(std::string(scheme.name));
-  return Json{{"scene_file", s.scene_path},
-              {"scene_hash", std::to_string(std::hash<std::string>{}(file_text(s.scene_path)))},
-              {"overrides", s.overrides},
-              {"scene", s.scene.name},
-              {"problem", std::string(solvers::to_string(s.problem))},
-              {"schemes", schemes},
-              {"nodes", study_nodes(s)},
-              {"dt", s.dts},
-              {"refine", std::string(to_string(s.refine))},
-              {"reference", s.reference ? Json(*s.reference) : Json(nullptr)},
-              {"solver_tol", s.tol},
-              {"t_end", s.t_end},
-              {"repeats", s.repeats}};
+  Json j{{"scene_file", s.scene_path},
+         {"scene_hash", std::to_string(std::hash<std::string>{}(file_text(s.scene_path)))},
+         {"overrides", s.overrides},
+         {"scene", s.scene.name},
+         {"problem", std::string(solvers::to_string(s.problem))},
+         {"schemes", schemes},
+         {"nodes", study_nodes(s)},
+         {"dt", s.dts},
+         {"refine", std::string(to_string(s.refine))},
+         {"reference", s.reference ? Json(*s.reference) : Json(nullptr)},
+         {"solver_tol", s.tol},
+         {"t_end", s.t_end},
+         {"repeats", s.repeats}};
+  if (!s.grids.empty()) j["grids"] = s.grids;
+  return j;
 }
 
 void write_output(const std::string& dir, const std::string& name, const std::string& content) {

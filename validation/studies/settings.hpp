@@ -36,8 +36,21 @@ struct Settings {
   double t_end = 0.0;                        ///< dynamics run length [s]
   int repeats = 1;                           ///< timed repeats (work-precision)
   std::vector<double> moduli;                ///< stability: Young's moduli [Pa]
+  /// Dynamics (not stability): the spatial grids to sweep ("euler", "staggered", "corrected";
+  /// --grids). Every grid is its own sweep, on the scene with solver.grid set to it and against
+  /// its own reference (ida on that grid); `euler` only for the schemes that march it
+  /// (takes_grid). Empty: the scene's grid alone, and no grid in the outputs' settings.
+  std::vector<std::string> grids;
   std::string command_line;
 };
+
+/// Whether a dynamics scheme runs on `grid`: the thesis' Euler grid is a grid of the shooting
+/// schemes (implicit-midpoint, bdf-alpha) only; every scheme takes staggered and corrected.
+bool takes_grid(std::string_view scheme, std::string_view grid);
+/// The grid the runs of `settings` (with grids empty) are on: solver.grid, else "staggered".
+std::string scene_grid(const Settings& settings);
+/// `settings` for one of its grids: the scene's solver.grid set to it, no grids.
+Settings settings_on_grid(const Settings& settings, const std::string& grid);
 
 /// Statics: 6, 11, 21, 41, 81 (ds halves); dynamics: 10, 20; joint refinement: 6, 11, 21, 41.
 std::vector<int> default_nodes(solvers::Problem problem, Refinement refine = Refinement::time);

@@ -27,7 +27,7 @@ std::vector<bool> pareto_front(const Sweep& sweep) {
 std::string work_precision_csv(const Sweep& sweep, const std::vector<bool>& pareto) {
   std::string out =
       "scheme,role,nodes,dt,error,max_error,wall_time_s,wall_time_min_s,repeats,converged,"
-      "pareto,reason\n";
+      "pareto,reason,grid\n";
   for (std::size_t i = 0; i < sweep.rows.size(); ++i) {
     const auto& r = sweep.rows[i];
     const bool dyn = r.spec.problem == solvers::Problem::dynamics;
@@ -36,7 +36,7 @@ std::string work_precision_csv(const Sweep& sweep, const std::vector<bool>& pare
            (dyn ? csv_number(r.max_error) : "") + ',' + csv_number(r.run.wall_time_s) + ',' +
            csv_number(r.run.wall_time_min_s) + ',' + std::to_string(r.run.repeats) + ',' +
            (r.run.converged ? "true" : "false") + ',' + (pareto[i] ? "true" : "false") + ',' +
-           csv_text(r.note.empty() ? r.run.reason : r.note) + '\n';
+           csv_text(r.note.empty() ? r.run.reason : r.note) + ',' + r.grid + '\n';
   }
   return out;
 }
@@ -61,6 +61,7 @@ Recommendation recommend(const Json& rows, double tol, std::optional<double> bud
       continue;
     Candidate c;
     c.scheme = row["scheme"].get<std::string>();
+    if (row.contains("grid") && row["grid"].is_string()) c.grid = row["grid"].get<std::string>();
     c.nodes = row["nodes"].get<int>();
     if (row["dt"].is_number()) c.dt = row["dt"].get<double>();
     c.error = row[field].get<double>();

@@ -22,6 +22,7 @@ Json work_precision_json(const Sweep& sweep, const std::vector<bool>& pareto,
 
 struct Candidate {
   std::string scheme;
+  std::string grid;  ///< dynamics: the run's spatial grid (empty in rows written before it)
   int nodes = 0;
   std::optional<double> dt;
   double error = 0.0;
