@@ -234,6 +234,21 @@ void print_pareto(const study::Sweep& sweep, const std::vector<bool>& pareto,
                 << io::format_number(sweep.rows[i].run.wall_time_s) << " s\n";
 }
 
+/// A dynamics study on one grid that is not the corrected grid, of a scene the corrected grid
+/// takes (a Cosserat rod without actuators): recommend's hint when nothing qualifies.
+bool corrected_grid_unswept(const study::Settings& settings) {
+  if (settings.problem != Problem::dynamics || !settings.grids.empty() ||
+      study::scene_grid(settings) == "corrected")
+    return false;
+  try {
+    solvers::dynamics::require_corrected_grid(
+        solvers::dynamics::DynamicProblem::from_scene(settings.scene));
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+  return true;
+}
+
 /// `study recommend` on measured (or reused) work-precision rows: prints and writes
 /// recommendation.json; true when a run meets the target.
 bool recommend_and_write(const Json& wp, bool reused, const study::Settings& settings,
@@ -255,7 +270,12 @@ bool recommend_and_write(const Json& wp, bool reused, const study::Settings& set
                 << '\n';
     else if (rec.most_accurate)
       std::cout << "  most accurate measured: " << describe(*rec.most_accurate) << '\n';
-    std::cout << "  (refine with --nodes / --dt, or relax --tol / --budget-ms)\n";
+    std::cout << "  (refine with --nodes / --dt, or relax --tol / --budget-ms"
+              << (corrected_grid_unswept(settings)
+                      ? "; or sweep the corrected grid too: --grids " + study::scene_grid(settings) +
+                            ",corrected"
+                      : std::string())
+              << ")\n";
   }
   const Json out{{"schema", "rodlab.study/1"},
                  {"kind", "recommend"},

@@ -299,6 +299,21 @@ BOOST_AUTO_TEST_CASE(grids_sweep_each_grid_as_its_own_study) {
   BOOST_TEST(csv_header.find(",grid\n") != std::string::npos, csv_header);
 }
 
+// When nothing qualifies on one grid that is not the corrected one, and the scene takes the
+// corrected grid, recommend names --grids; never for a scene that the corrected grid refuses.
+BOOST_AUTO_TEST_CASE(recommend_points_to_the_corrected_grid) {
+  Sandbox box;
+  const std::string args = "study recommend " + quote(kDynamicScene) +
+                           " --refine grid --t-end 0.02 --nodes 4 --repeats 1"
+                           " --schemes implicit-midpoint --dt 0.01 --tol 1e-12";
+  const Run plain = box.run(args + " --out p");
+  BOOST_TEST(plain.status == 1);
+  BOOST_TEST(plain.out.find("--grids staggered,corrected") != std::string::npos, plain.out);
+  const Run kirchhoff = box.run(args + " --set rod.model=kirchhoff --out k");
+  BOOST_TEST(kirchhoff.status == 1);
+  BOOST_TEST(kirchhoff.out.find("--grids") == std::string::npos, kirchhoff.out);
+}
+
 BOOST_AUTO_TEST_CASE(grid_refinement_measures_space_and_time_together) {
   Sandbox box;
   const Run r = box.run("study recommend " + quote(kDynamicScene) +
