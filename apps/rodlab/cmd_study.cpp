@@ -237,16 +237,10 @@ void print_pareto(const study::Sweep& sweep, const std::vector<bool>& pareto,
 /// A dynamics study on one grid that is not the corrected grid, of a scene the corrected grid
 /// takes (a Cosserat rod without actuators): recommend's hint when nothing qualifies.
 bool corrected_grid_unswept(const study::Settings& settings) {
-  if (settings.problem != Problem::dynamics || !settings.grids.empty() ||
-      study::scene_grid(settings) == "corrected")
-    return false;
-  try {
-    solvers::dynamics::require_corrected_grid(
-        solvers::dynamics::DynamicProblem::from_scene(settings.scene));
-  } catch (const std::invalid_argument&) {
-    return false;
-  }
-  return true;
+  return settings.problem == Problem::dynamics && settings.grids.empty() &&
+         study::scene_grid(settings) != "corrected" &&
+         !solvers::dynamics::corrected_grid_refusal(
+             solvers::dynamics::DynamicProblem::from_scene(settings.scene));
 }
 
 /// `study recommend` on measured (or reused) work-precision rows: prints and writes
@@ -369,14 +363,10 @@ std::vector<std::string> checked_grids(const std::vector<std::string>& names,
     if (!taken)
       throw UsageError("--grids: " + grid + " is a grid of implicit-midpoint and bdf-alpha, "
                        "and no scheme of the study marches it");
-    if (grid == "corrected") {
-      try {
-        solvers::dynamics::require_corrected_grid(
-            solvers::dynamics::DynamicProblem::from_scene(settings.scene));
-      } catch (const std::invalid_argument& e) {
-        throw UsageError("--grids: " + std::string(e.what()));
-      }
-    }
+    if (grid == "corrected")
+      if (const auto reason = solvers::dynamics::corrected_grid_refusal(
+              solvers::dynamics::DynamicProblem::from_scene(settings.scene)))
+        throw UsageError("--grids: " + *reason);
     grids.push_back(grid);
   }
   return grids;

@@ -8,15 +8,18 @@
 
 namespace rodlab::solvers::dynamics {
 
-void require_corrected_grid(const DynamicProblem& problem) {
+std::optional<std::string> corrected_grid_refusal(const DynamicProblem& problem) {
   if (problem.is_kirchhoff())
-    throw std::invalid_argument(
-        "solver.grid: corrected needs rod.model cosserat (its bending correction is a shear "
-        "compliance, and a Kirchhoff rod has no shear); use solver.grid: staggered");
+    return "solver.grid: corrected needs rod.model cosserat (its bending correction is a shear "
+           "compliance, and a Kirchhoff rod has no shear); use solver.grid: staggered";
   if (problem.has_actuators())
-    throw std::invalid_argument(
-        "solver.grid: corrected does not take actuators yet (their node inertia and loads are "
-        "not corrected); use solver.grid: staggered");
+    return "solver.grid: corrected does not take actuators yet (their node inertia and loads are "
+           "not corrected); use solver.grid: staggered";
+  return std::nullopt;
+}
+
+void require_corrected_grid(const DynamicProblem& problem) {
+  if (const auto reason = corrected_grid_refusal(problem)) throw std::invalid_argument(*reason);
 }
 
 DynamicProblem corrected_grid_problem(const DynamicProblem& problem, int nodes) {

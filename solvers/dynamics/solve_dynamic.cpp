@@ -71,8 +71,8 @@ RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem
   // Euler RKMK, which misses a clamp by O(ds) with rk4's strains; with a clamped tip they start
   // from the statics of their own grid (rkmk-euler-explicit at N: the same recursion at eta = 0,
   // xi_dot = 0). The staggered grid takes its strains from the poses and meets the clamp exactly.
-  const bool own_grid = problem.tip_clamped() && options.grid == ShootingGrid::euler &&
-                        (options.scheme == "implicit-midpoint" || options.scheme == "bdf-alpha");
+  const bool own_grid =
+      problem.tip_clamped() && options.grid == ShootingGrid::euler && marches_in_s(options.scheme);
   const int refinement = own_grid ? 1 : kStaticRefinement;
   statics::StaticSolveOptions so;
   so.scheme = own_grid ? "rkmk-euler-explicit" : "rkmk-rk4";
@@ -122,10 +122,14 @@ DynamicProblem scene_problem_on_grid(const scene::Scene& scene, std::string_view
   return problem_on_grid(DynamicProblem::from_scene(scene), options);
 }
 
+bool marches_in_s(std::string_view scheme) {
+  const auto info = find_scheme(scheme);
+  return info && (info->id == SchemeId::implicit_midpoint || info->id == SchemeId::bdf_alpha);
+}
+
 std::string step_problem(const DynamicProblem& problem, const DynamicSolveOptions& options,
                          double dt) {
-  const SchemeId id = scheme_for(options.scheme, Problem::dynamics).id;
-  if (id != SchemeId::implicit_midpoint && id != SchemeId::bdf_alpha) return {};
+  if (!marches_in_s(options.scheme)) return {};
   return single_shooting_step_problem(problem, options.scheme, options.grid, dt, options.tol);
 }
 

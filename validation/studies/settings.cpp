@@ -98,7 +98,7 @@ std::vector<double> grid_steps(const Settings& settings, const solvers::SchemeIn
 }
 
 bool takes_grid(std::string_view scheme, std::string_view grid) {
-  return grid != "euler" || scheme == "implicit-midpoint" || scheme == "bdf-alpha";
+  return grid != "euler" || solvers::dynamics::marches_in_s(scheme);
 }
 
 std::string scene_grid(const Settings& settings) {

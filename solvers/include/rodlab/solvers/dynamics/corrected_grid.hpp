@@ -16,15 +16,18 @@
 // semi-discrete rod of `ida` and `implicit-midpoint-collocation` (SemiDiscreteRod's
 // corrected_grid) and the staggered shooting march of `implicit-midpoint` and `bdf-alpha`.
 #include <optional>
+#include <string>
 
 #include "rodlab/lie/se3.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 
 namespace rodlab::solvers::dynamics {
 
-/// Throws std::invalid_argument, naming solver.grid, where the scene cannot take the corrected
-/// grid (every dynamics scheme can): Kirchhoff rods (the flexibility is a shear compliance) and
-/// scenes with actuators (their node inertia and loads are not corrected).
+/// Why the scene cannot take the corrected grid (every dynamics scheme can), naming
+/// solver.grid: Kirchhoff rods (the flexibility is a shear compliance) and scenes with actuators
+/// (their node inertia and loads are not corrected); nullopt where it can.
+std::optional<std::string> corrected_grid_refusal(const DynamicProblem& problem);
+/// Throws std::invalid_argument with corrected_grid_refusal's reason, where there is one.
 void require_corrected_grid(const DynamicProblem& problem);
 
 /// The problem on the corrected grid of `nodes` nodes: its model with the residual bending
