@@ -55,7 +55,7 @@ bool SemiDiscreteRod::analytic_jacobian() const {
 }
 
 void SemiDiscreteRod::linearise_segment(int j, SegmentLinearisation& out) const {
-  const SE3 G = g_[j].inverse() * g_[j + 1];
+  const SE3 G = g_[j].inverse_times(g_[j + 1]);
   const Vector6 x = ds_ * xi_[j];
   const Matrix6 Ad_inv = G.inverse().Ad(), coAd = G.Ad().transpose();
   const Matrix6 T_minus = se3::dexp_inv(-x), T_plus_T = se3::dexp_inv(x).transpose();

@@ -142,7 +142,7 @@ SemiDiscreteRod::Vector SemiDiscreteRod::rest_state(std::span<const SE3> g0) con
     // Start on the constraint (as variational): a chord of the sampled initial shape is shorter
     // than its arc by O((kappa ds)^2); each segment keeps its rotation and gets nu = nu*.
     for (int j = 0; j + 1 < n_; ++j) {
-      Vector6 x = (g0[j].inverse() * g0[j + 1]).log();
+      Vector6 x = (g0[j].inverse_times(g0[j + 1])).log();
       x.tail<3>() = ds_ * nu_star_[j];
       g[j + 1] = g[j] * SE3::exp(x);
     }
@@ -181,7 +181,7 @@ SemiDiscreteRod::Vector SemiDiscreteRod::initial_unknowns(const ConstRef& y) con
 void SemiDiscreteRod::segment_lengths(const double* y, std::vector<double>& seg) const {
   unpack_nodes(y);
   for (int j = 0; j + 1 < n_; ++j) {
-    const Vector6 xk = model_strain((g_[j].inverse() * g_[j + 1]).log() / ds_, j);
+    const Vector6 xk = model_strain((g_[j].inverse_times(g_[j + 1])).log() / ds_, j);
     for (int e = 0; e < m_; ++e) {
       const std::size_t i = static_cast<std::size_t>(e) * (n_ - 1) + j;
       seg[i] = seg_weight_[i] == 0.0 ? 0.0
@@ -233,7 +233,7 @@ void SemiDiscreteRod::unpack_nodes(const double* y) const {
 
 void SemiDiscreteRod::set_state(const ConstRef& y) const {
   unpack_nodes(y.data());
-  for (int j = 0; j + 1 < n_; ++j) xi_[j] = (g_[j].inverse() * g_[j + 1]).log() / ds_;
+  for (int j = 0; j + 1 < n_; ++j) xi_[j] = (g_[j].inverse_times(g_[j + 1])).log() / ds_;
 }
 
 void SemiDiscreteRod::ida_residual(double t, const ConstRef& y, const ConstRef& yp,
@@ -248,7 +248,7 @@ void SemiDiscreteRod::ida_residual(double t, const ConstRef& y, const ConstRef& 
 void SemiDiscreteRod::constraint(const double* y, double* c) const {
   unpack_nodes(y);
   for (int j = 0; j + 1 < n_; ++j) {
-    const Vector6 x = (g_[j].inverse() * g_[j + 1]).log();
+    const Vector6 x = (g_[j].inverse_times(g_[j + 1])).log();
     Eigen::Map<Vector3>(c + 3 * j) = x.tail<3>() / ds_ - nu_star_[j];
   }
 }
@@ -267,7 +267,7 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
   const double inv_ds = 1.0 / ds_;  // products, not divisions, in the loops
   if (m_ > 0) rates_.setZero();
   for (int j = 0; j + 1 < n_; ++j) {
-    const SE3 G = g_[j].inverse() * g_[j + 1];
+    const SE3 G = g_[j].inverse_times(g_[j + 1]);
     // The segment's angle is small (ds |kappa|): log, dexp^-1 and dexp^-T share the coefficients
     // e, f of the small-angle kernels (as in `variational`); the two adjoint maps share R^T.
     small::EF k;

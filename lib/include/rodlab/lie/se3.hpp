@@ -279,6 +279,11 @@ class SE3 {
   }
 
   SE3 operator*(const SE3& other) const { return SE3(R_ * other.R_, p_ + R_ * other.p_); }
+  /// inverse() * other, with one rotation fewer: (R^T R_o, R^T (p_o - p)).
+  SE3 inverse_times(const SE3& other) const {
+    const SO3 Rt = R_.inverse();
+    return SE3(Rt * other.R_, Rt * Vector3(other.p_ - p_));
+  }
   SE3& operator*=(const SE3& other) { return *this = *this * other; }
 
   /// Acts on a point: R x + p.
