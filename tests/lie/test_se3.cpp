@@ -89,7 +89,8 @@ BOOST_AUTO_TEST_CASE(hat_vee_and_ad) {
 BOOST_AUTO_TEST_CASE(group_axioms) {
   Worst assoc("(ab)c - a(bc)"), ident("aI - a, Ia - a"), inv("a a^-1 - I, a^-1 a - I"),
       product("matrix(ab) - matrix(a) matrix(b)"), action("a * x - (matrix(a) [x; 1]).head(3)"),
-      inverse_matrix("matrix(a^-1) - matrix(a)^-1");
+      inverse_matrix("matrix(a^-1) - matrix(a)^-1"),
+      inverse_times("matrix(a.inverse_times(b)) - matrix(a)^-1 matrix(b)");
   const auto& g = transforms();
   const Matrix4 I = Matrix4::Identity();
   for (std::size_t i = 0; i < g.size(); ++i) {
@@ -113,8 +114,11 @@ BOOST_AUTO_TEST_CASE(group_axioms) {
     const Eigen::Vector4d xh(x.x(), x.y(), x.z(), 1.0);
     action.update(scaled_error(a * x, Vector3((Ma * xh).head<3>())), label);
     inverse_matrix.update(scaled_error(a.inverse().matrix(), Matrix4(Ma.inverse())), label);
+    inverse_times.update(scaled_error(a.inverse_times(b).matrix(), Matrix4(Ma.inverse() * Mb)),
+                         label);
   }
-  for (Worst* w : {&assoc, &ident, &inv, &product, &action, &inverse_matrix}) w->check(kAlgebraTol);
+  for (Worst* w : {&assoc, &ident, &inv, &product, &action, &inverse_matrix, &inverse_times})
+    w->check(kAlgebraTol);
 }
 
 // SE3::exp(xi) against the 4x4 matrix exponential of hat(xi) (long double scaling and squaring),
