@@ -16,6 +16,7 @@
 #include "rodlab/io/text_format.hpp"
 #include "rodlab/solvers/dynamics/corrected_grid.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 
 #include "command.hpp"
 #include "common_options.hpp"
@@ -47,7 +48,6 @@ constexpr OptionSpec kStudyTolOption{
     "recommend: the tip error to reach [m]; other studies: the solver tolerance "
     "(default: solver.tol)"};
 constexpr std::array<std::string_view, 3> kRefinements{"time", "joint", "grid"};
-constexpr std::array<std::string_view, 3> kGrids{"euler", "staggered", "corrected"};
 constexpr std::array<OptionSpec, 15> kSweepOptions{
     OptionSpec{"--schemes", "A,B,...",
                "schemes to compare, comma-separated (one problem class); default: all of the problem class"},
@@ -353,7 +353,7 @@ std::vector<std::string> checked_grids(const std::vector<std::string>& names,
                                        const study::Settings& settings) {
   std::vector<std::string> grids;
   for (const auto& grid : names) {
-    if (std::find(kGrids.begin(), kGrids.end(), grid) == kGrids.end())
+    if (!solvers::dynamics::shooting_grid_from_name(grid))
       throw UsageError("--grids: unknown grid '" + grid + "'; the grids are euler, staggered, "
                        "corrected");
     if (std::find(grids.begin(), grids.end(), grid) != grids.end()) continue;

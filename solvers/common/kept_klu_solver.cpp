@@ -20,24 +20,6 @@ namespace {
 static_assert(std::is_same_v<sunindextype, SuiteSparse_long>,
               "the kept KLU solver needs SUNDIALS built with 64-bit indices (klu_l_*)");
 
-/// The values of the matrix factorised last (CSC data, the pattern fixed).
-class FactorisedValues {
- public:
-  /// Whether `values` (nnz of them) are those factorised last.
-  bool same(const double* values, std::size_t nnz) const {
-    return valid_ && values_.size() == nnz && std::equal(values, values + nnz, values_.begin());
-  }
-  void remember(const double* values, std::size_t nnz) {
-    values_.assign(values, values + nnz);  // the same size after the first: no allocation
-    valid_ = true;
-  }
-  void forget() { valid_ = false; }
-
- private:
-  std::vector<double> values_;
-  bool valid_ = false;
-};
-
 struct Content {
   Content() = default;
   Content(const Content&) = delete;
@@ -50,8 +32,8 @@ struct Content {
   klu_l_common common{};
   klu_l_symbolic* symbolic = nullptr;
   klu_l_numeric* numeric = nullptr;
-  FactorisedValues factorised;  ///< the values of the last factorised matrix
-  bool keep_factors = true;     ///< across KINSol calls
+  std::vector<double> factorised;  ///< the values of the last factorised matrix
+  bool keep_factors = true;        ///< across KINSol calls
   int last_flag = SUNLS_SUCCESS;
   KeptKluCounts counts;
 };
@@ -64,7 +46,7 @@ int initialize(SUNLinearSolver S) {
   Content& c = content(S);
   if (!c.keep_factors) {
     if (c.numeric) klu_l_free_numeric(&c.numeric, &c.common);
-    c.factorised.forget();
+    c.factorised.clear();
   }
   return c.last_flag = SUNLS_SUCCESS;
 }
@@ -90,7 +72,7 @@ int setup(SUNLinearSolver S, SUNMatrix A) {
     if (!c.symbolic) return c.last_flag = SUNLS_PACKAGE_FAIL_UNREC;
   }
   // The matrix factorised last (a Jacobian kept across solves): the factors are still right.
-  if (c.numeric && c.factorised.same(Ax, nnz)) {
+  if (c.numeric && c.factorised.size() == nnz && std::equal(Ax, Ax + nnz, c.factorised.begin())) {
     ++c.counts.skipped;
     return c.last_flag = SUNLS_SUCCESS;
   }
@@ -105,12 +87,12 @@ int setup(SUNLinearSolver S, SUNMatrix A) {
   }
   if (!ok) ok = factor(c, Ap, Ai, Ax);
   if (!ok) {
-    c.factorised.forget();
+    c.factorised.clear();
     // A singular matrix is recoverable (KINSOL may retry with a new Jacobian).
     return c.last_flag = c.common.status == KLU_SINGULAR ? SUNLS_PACKAGE_FAIL_REC
                                                         : SUNLS_PACKAGE_FAIL_UNREC;
   }
-  c.factorised.remember(Ax, nnz);
+  c.factorised.assign(Ax, Ax + nnz);
   return c.last_flag = SUNLS_SUCCESS;
 }
 
@@ -121,7 +103,6 @@ int solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, double) {
   const int ok = klu_l_solve(c.symbolic, c.numeric, c.n, 1, N_VGetArrayPointer(x), &c.common);
   return c.last_flag = ok == 1 ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_REC;
 }
-
 
 // --- copies of the analysis and the factors (assign_kept_klu) -------------------------------
 // The layout is klu.h's; the sizes are those klu_l_free_symbolic and klu_l_free_numeric free
@@ -293,7 +274,7 @@ void assign_kept_klu(SUNLinearSolver dst, SUNLinearSolver src) {
     copy_numeric(d.numeric, *s.numeric, d.common);
   else if (d.numeric)
     klu_l_free_numeric(&d.numeric, &d.common);
-  d.factorised = s.factorised;  // the same size after the first copy: no allocation
+  d.factorised = s.factorised;  // same size after the first copy: no allocation
   d.last_flag = s.last_flag;
   d.counts = s.counts;
 }

@@ -204,7 +204,7 @@ Plan plan_grids(const Settings& s) {
     Plan plan = plan_for(on);
     std::vector<int> index(plan.specs.size(), -1);  // plan's runs in `all`
     for (std::size_t i = 0; i < plan.specs.size(); ++i) {
-      plan.grids[i] = takes_grid(plan.specs[i].scheme, grid) ? grid : "staggered";
+      plan.grids[i] = run_grid(plan.specs[i].scheme, grid);
       for (std::size_t j = 0; j < all.specs.size() && index[i] < 0; ++j)
         if (plan.roles[i] == "reference" && same_run(plan, i, all, j))
           index[i] = static_cast<int>(j);
@@ -219,12 +219,13 @@ Plan plan_grids(const Settings& s) {
       if (plan.reference_of[i] >= 0)
         all.reference_of[static_cast<std::size_t>(index[i])] =
             index[static_cast<std::size_t>(plan.reference_of[i])];
+    const std::string reference_grid = run_grid("ida", grid);
     plan.reference["grid"] = grid;
-    if (!takes_grid("ida", grid)) plan.reference["reference_grid"] = "staggered";
+    if (reference_grid != grid) plan.reference["reference_grid"] = reference_grid;
     references.push_back(plan.reference);
     description += (description.empty() ? "" : "; ") + grid + " grid: " +
                    plan.reference.value("description", "") +
-                   (takes_grid("ida", grid) ? "" : " (ida on the staggered grid)");
+                   (reference_grid == grid ? "" : " (ida on the " + reference_grid + " grid)");
   }
   all.reference = {{"kind", "per grid"}, {"grids", references}, {"description", description}};
   return all;
@@ -350,9 +351,8 @@ Sweep run_sweep(const Settings& s, const Executor& executor) {
     SweepRow row;
     row.role = plan.roles[i];
     row.spec = plan.specs[i];
-    if (s.problem == Problem::dynamics) {  // a scheme that does not march a grid: staggered
-      const std::string grid = plan.grids[i].empty() ? scene_grid(s) : plan.grids[i];
-      row.grid = takes_grid(row.spec.scheme, grid) ? grid : "staggered";
+    if (s.problem == Problem::dynamics) {  // run_grid: a non-marching scheme on euler
+      row.grid = run_grid(row.spec.scheme, plan.grids[i].empty() ? scene_grid(s) : plan.grids[i]);
     }
     row.run = record_from_json(results[i]);
     row.h = s.problem == Problem::statics || joint ? length / (row.spec.nodes - 1) : row.run.dt;

@@ -101,8 +101,19 @@ bool takes_grid(std::string_view scheme, std::string_view grid) {
   return grid != "euler" || solvers::dynamics::marches_in_s(scheme);
 }
 
+namespace {
+std::string default_grid() {
+  namespace dyn = solvers::dynamics;
+  return std::string(dyn::shooting_grid_name(dyn::DynamicSolveOptions{}.grid));
+}
+}  // namespace
+
+std::string run_grid(std::string_view scheme, const std::string& grid) {
+  return takes_grid(scheme, grid) ? grid : default_grid();
+}
+
 std::string scene_grid(const Settings& settings) {
-  return settings.scene.solver.grid.value_or("staggered");
+  return settings.scene.solver.grid.value_or(default_grid());
 }
 
 Settings settings_on_grid(const Settings& settings, const std::string& grid) {

@@ -47,7 +47,10 @@ struct Settings {
 /// Whether a dynamics scheme runs on `grid`: the thesis' Euler grid is a grid of the shooting
 /// schemes (implicit-midpoint, bdf-alpha) only; every scheme takes staggered and corrected.
 bool takes_grid(std::string_view scheme, std::string_view grid);
-/// The grid the runs of `settings` (with grids empty) are on: solver.grid, else "staggered".
+/// The grid `scheme` runs on when asked for `grid`: `grid`, or the default grid (staggered)
+/// where the scheme does not march the Euler grid.
+std::string run_grid(std::string_view scheme, const std::string& grid);
+/// The grid the runs of `settings` (with grids empty) are on: solver.grid, else the default.
 std::string scene_grid(const Settings& settings);
 /// `settings` for one of its grids: the scene's solver.grid set to it, no grids.
 Settings settings_on_grid(const Settings& settings, const std::string& grid);
