@@ -15,6 +15,7 @@
 #include <array>
 #include <cstddef>
 
+#include "discrete_legendre.hpp"
 #include "rodlab/lie/small_angle.hpp"
 
 namespace rodlab::solvers::dynamics::packed {
@@ -194,12 +195,13 @@ inline V6 dexp_inv_transpose_apply(const V6& xi, const V6& lambda, D2 e, D2 f) {
 }
 
 /// solve_legendre (discrete_legendre.hpp) with a diagonal mass matrix M on both lanes: (3.42)
-/// for eta from the momentum mu, eta on entry the velocity that solved it for mu_old. Each lane
-/// stops by the scalar solve's two tests. Returns 1 when both lanes converged, 0 when one did
-/// not within max_iterations, -1 when an iterate left the small-angle bound; eta is changed only
-/// when both converged (else the caller solves the lanes with the scalar kernel, which also names
-/// a lane that diverges).
-inline int solve_legendre(const double* M, const double* M_inv, double tol, int max_iterations,
+/// for eta from the momentum mu, eta on entry the velocity that solved it for mu_old; the same
+/// iterates and tests, with the contraction bound `contraction` of M. Each lane stops by its own tests. Returns 1 when both lanes converged, 0
+/// when one did not within max_iterations, -1 when an iterate left the small-angle bound; eta is
+/// changed only when both converged (else the caller solves the lanes with the scalar kernel,
+/// which also names a lane that diverges).
+inline int solve_legendre(const double* M, const double* M_inv,
+                          const LegendreContraction& contraction, double tol, int max_iterations,
                           double dt, const V6& mu, const V6& mu_old, V6& eta) {
   const V6 eta_old = eta;
   // the first-order Jacobian at the iterate x (M x given)
@@ -212,6 +214,8 @@ inline int solve_legendre(const double* M, const double* M_inv, double tol, int 
   V6 result = x;
   Mask done = {0, 0};
   const double tol2 = tol * tol;
+  const bool bounded = contraction.cw2 >= 0.0;
+  const double cw2 = dt * dt * contraction.cw2, cv2 = dt * dt * contraction.cv2;
   for (int it = 1; it < max_iterations; ++it) {
     const V6 dx = dt * x;
     const D2 t2 = dot(dx.w, dx.w);
@@ -221,7 +225,16 @@ inline int solve_legendre(const double* M, const double* M_inv, double tol, int 
     coefficients_ef(t2, e, f);
     const V6 r = dexp_inv_transpose_apply(dx, Mx, e, f) - mu;
     const V6 y = diag(M_inv, r);
-    const Mask first = ~done & (dot(y, r) <= 0.25 * tol2 * dot(x, Mx));
+    const D2 y2 = dot(y, r), x2 = dot(x, Mx);  // |y|_M^2, |x|_M^2
+    Mask first = ~done & (y2 <= 0.25 * tol2 * x2);
+    // LegendreContraction's S2 and its two tests' factors, lane by lane, where the plain test
+    // did not end the solve
+    D2 S2 = splat(1.0);
+    if (bounded && !((done | first)[0] && (done | first)[1])) {
+      S2 = cw2 * dot(x.w, x.w) + cv2 * dot(x.v, x.v);
+      const Mask in_range = (S2 <= 0.25) & (y2 <= 1e-6 * x2);
+      first |= ~done & in_range & (0.735 * S2 * y2 <= 0.25 * tol2 * x2);
+    }
     result = select(first, x - y, result);
     done |= first;
     if (done[0] && done[1]) {  // most pairs, at the first iteration
@@ -230,7 +243,10 @@ inline int solve_legendre(const double* M, const double* M_inv, double tol, int 
     }
     const V6 step = newton_step(r, x, Mx);
     x = x - step;
-    const Mask second = ~done & (dot(step, diag(M, step)) <= tol2 * dot(x, diag(M, x)));
+    const D2 s2 = dot(step, diag(M, step)), xn2 = dot(x, diag(M, x));
+    const D2 qN = 0.47 * S2 + contraction.step_floor;
+    const D2 newton = (S2 <= 0.25) & (s2 <= 1e-12 * xn2) ? 5.2 * qN * qN : splat(1.0);
+    const Mask second = ~done & (newton * s2 <= tol2 * xn2);
     result = select(second, x, result);
     done |= second;
     if (done[0] && done[1]) {

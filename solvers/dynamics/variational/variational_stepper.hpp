@@ -420,8 +420,8 @@ class Variational final : public Stepper {
   int packed_velocities(int j, int k, double dt, const packed::V6& mu, const packed::V6& mu_old) {
     packed::V6 eta = packed::load(eta_[j], eta_[k]);
     const int solved = packed::solve_legendre(legendre_.M.data(), legendre_.M_inv.data(),
-                                              legendre_.tol, legendre_.max_iterations, dt, mu,
-                                              mu_old, eta);
+                                              legendre_.contraction, legendre_.tol,
+                                              legendre_.max_iterations, dt, mu, mu_old, eta);
     for (int l = 0; l < (k != j ? 2 : 1); ++l) {
       const int s = l == 0 ? j : k;
       mu_[s] = packed::lane(mu, l);
