@@ -196,10 +196,10 @@ inline V6 dexp_inv_transpose_apply(const V6& xi, const V6& lambda, D2 e, D2 f) {
 
 /// solve_legendre (discrete_legendre.hpp) with a diagonal mass matrix M on both lanes: (3.42)
 /// for eta from the momentum mu, eta on entry the velocity that solved it for mu_old; the same
-/// iterates and tests, with the contraction bound `contraction` of M. Each lane stops by its own tests. Returns 1 when both lanes converged, 0
-/// when one did not within max_iterations, -1 when an iterate left the small-angle bound; eta is
-/// changed only when both converged (else the caller solves the lanes with the scalar kernel,
-/// which also names a lane that diverges).
+/// iterates and tests, with the contraction bound `contraction` of M. Each lane stops by its own
+/// tests. Returns 1 when both lanes converged, 0 when one did not within max_iterations, -1 when
+/// an iterate left the small-angle bound; eta is changed only when both converged (else the
+/// caller solves the lanes with the scalar kernel, which also names a lane that diverges).
 inline int solve_legendre(const double* M, const double* M_inv,
                           const LegendreContraction& contraction, double tol, int max_iterations,
                           double dt, const V6& mu, const V6& mu_old, V6& eta) {
