@@ -71,6 +71,14 @@ struct FullMass {
 /// differences (measured at most 0.19, 0.23, 0.032 of the bounds), and that the cantilever's
 /// solves stop at their first residual (1.00 per solve, 1.99 with the plain tests alone).
 struct LegendreContraction {
+  // the constants of the derivation above (the packed solve, packed_pair.hpp, takes them too)
+  static constexpr double kRange = 0.25;          ///< S2's range: dt (a + b) <= 1/2
+  static constexpr double kZerothRange = 1e-6;    ///< |y|_M^2 / |x|_M^2 at most this
+  static constexpr double kZerothFactor = 0.735;  ///< (q / (1 - q))^2 <= kZerothFactor S2
+  static constexpr double kNewtonRange = 1e-12;   ///< |step|_M^2 / |x|_M^2 at most this
+  static constexpr double kNewtonS2 = 0.47;       ///< q_N <= kNewtonS2 S2 + step_floor
+  static constexpr double kNewtonFactor = 5.2;    ///< 4 (q_N / (1 - q_N))^2 <= this q_N^2
+
   double cw2 = -1.0;        ///< S2's coefficient of dt^2 |w|^2; negative where there is no bound
   double cv2 = -1.0;        ///< S2's coefficient of dt^2 |v|^2
   double step_floor = 1.0;  ///< q_N's floor
@@ -91,13 +99,13 @@ struct LegendreContraction {
   /// (q / (1 - q))^2 for the zeroth-order step (|y|_M^2 = y2, |x|_M^2 = x2), else 1: the factor
   /// of |y|_M^2 in its test.
   static double zeroth_order_factor(double S2, double y2, double x2) {
-    return S2 <= 0.25 && y2 <= 1e-6 * x2 ? 0.735 * S2 : 1.0;
+    return S2 <= kRange && y2 <= kZerothRange * x2 ? kZerothFactor * S2 : 1.0;
   }
   /// 4 (q_N / (1 - q_N))^2 for a Newton step (|step|_M^2 = s2, |x|_M^2 = x2 after it), else 1
   /// (the plain test |step|_M <= tol |x|_M): the factor of |step|_M^2 in its test (below 0.08).
   double newton_factor(double S2, double s2, double x2) const {
-    const double qN = 0.47 * S2 + step_floor;
-    return S2 <= 0.25 && s2 <= 1e-12 * x2 ? 5.2 * qN * qN : 1.0;
+    const double qN = kNewtonS2 * S2 + step_floor;
+    return S2 <= kRange && s2 <= kNewtonRange * x2 ? kNewtonFactor * qN * qN : 1.0;
   }
 };
 

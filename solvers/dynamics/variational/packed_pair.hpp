@@ -214,6 +214,7 @@ inline int solve_legendre(const double* M, const double* M_inv,
   V6 result = x;
   Mask done = {0, 0};
   const double tol2 = tol * tol;
+  using C = LegendreContraction;
   const bool bounded = contraction.cw2 >= 0.0;
   const double cw2 = dt * dt * contraction.cw2, cv2 = dt * dt * contraction.cv2;
   for (int it = 1; it < max_iterations; ++it) {
@@ -232,8 +233,8 @@ inline int solve_legendre(const double* M, const double* M_inv,
     D2 S2 = splat(1.0);
     if (bounded && !((done | first)[0] && (done | first)[1])) {
       S2 = cw2 * dot(x.w, x.w) + cv2 * dot(x.v, x.v);
-      const Mask in_range = (S2 <= 0.25) & (y2 <= 1e-6 * x2);
-      first |= ~done & in_range & (0.735 * S2 * y2 <= 0.25 * tol2 * x2);
+      const Mask in_range = (S2 <= C::kRange) & (y2 <= C::kZerothRange * x2);
+      first |= ~done & in_range & (C::kZerothFactor * S2 * y2 <= 0.25 * tol2 * x2);
     }
     result = select(first, x - y, result);
     done |= first;
@@ -244,8 +245,9 @@ inline int solve_legendre(const double* M, const double* M_inv,
     const V6 step = newton_step(r, x, Mx);
     x = x - step;
     const D2 s2 = dot(step, diag(M, step)), xn2 = dot(x, diag(M, x));
-    const D2 qN = 0.47 * S2 + contraction.step_floor;
-    const D2 newton = (S2 <= 0.25) & (s2 <= 1e-12 * xn2) ? 5.2 * qN * qN : splat(1.0);
+    const D2 qN = C::kNewtonS2 * S2 + contraction.step_floor;
+    const D2 newton =
+        (S2 <= C::kRange) & (s2 <= C::kNewtonRange * xn2) ? C::kNewtonFactor * qN * qN : splat(1.0);
     const Mask second = ~done & (newton * s2 <= tol2 * xn2);
     result = select(second, x, result);
     done |= second;
