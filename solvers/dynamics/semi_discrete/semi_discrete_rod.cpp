@@ -10,6 +10,7 @@
 #include "rodlab/lie/small_angle.hpp"
 #include "rodlab/rod/characteristics.hpp"
 #include "rodlab/solvers/dynamics/stepper.hpp"
+#include "../variational/packed_pair.hpp"  // private to solvers/dynamics
 
 namespace rodlab::solvers::dynamics {
 namespace {
@@ -107,7 +108,9 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
   const double EI = std::min(model.K_diag()[0], model.K_diag()[1]);
   problem.model().require_spans_on_grid(n_, "the semi-discrete rod");
   nu_star_.resize(n_ - 1);
-  for (int j = 0; j + 1 < n_; ++j) nu_star_[j] = model.xi_star((j + 0.5) * ds_).tail<3>();
+  xi_star_.resize(n_ - 1);
+  for (int j = 0; j + 1 < n_; ++j) xi_star_[j] = model.xi_star((j + 0.5) * ds_);
+  for (int j = 0; j + 1 < n_; ++j) nu_star_[j] = xi_star_[j].tail<3>();
   force_scale_ = EI / (L * L);
   const double e_bend = 0.5 * EI * std::pow(0.5 * std::numbers::pi / L, 2) * L;
   scale_.resize(dim_);
@@ -259,45 +262,84 @@ void SemiDiscreteRod::constraint(const ConstRef& y, Eigen::Ref<Vector> c) const 
   constraint(y.data(), c.data());
 }
 
+void SemiDiscreteRod::segment(int j, double t, bool actuators, const double* forces) const {
+  const double inv_ds = 1.0 / ds_;  // products, not divisions
+  const SE3 G = g_[j].inverse_times(g_[j + 1]);
+  // The segment's angle is small (ds |kappa|): log, dexp^-1 and dexp^-T share the coefficients
+  // e, f of the small-angle kernels (as in `variational`); the two adjoint maps share R^T.
+  small::EF k;
+  const Vector6 x_seg = small::log(G, k);  // ds xi_j
+  xi_[j] = x_seg * inv_ds;
+  const lie::SE3Adjoints adjoints(G);
+  const Vector6 rel = eta_[j + 1] - adjoints.inverse_Ad_apply(eta_[j]);
+  xi_dot_[j] = small::dexp_inv_apply(-x_seg, rel, k) * inv_ds;
+  const double s_mid = (j + 0.5) * ds_;
+  // Kirchhoff rods: the rod's own force part is replaced by the constraint force (header).
+  Vector6 xk = model_strain(xi_[j], j), xk_dot = xi_dot_[j];
+  if (kirchhoff_) xk_dot.tail<3>().setZero();
+  Vector6 sigma = actuators ? P_.internal_wrench(xk, xk_dot, s_mid, F_)
+                            : P_.internal_wrench(xk, xk_dot, s_mid, t);
+  if (kirchhoff_ && forces) sigma.tail<3>() += Eigen::Map<const Vector3>(forces + 3 * j);
+  lambda_[j] = small::dexp_inv_transpose_apply(x_seg, sigma, k);
+  moved_[j] = adjoints.coAd_apply(lambda_[j]);
+  seg_diss_[j] = ds_ * xk_dot.dot(V_.cwiseProduct(xk_dot));
+  if (muscles_) seg_diss_[j] += ds_ * P_.embedded_dissipation(xk_dot, s_mid);
+  seg_work_[j] = actuators ? ds_ * P_.actuator_power(xk, xk_dot, s_mid, F_) : 0.0;
+  for (int e = 0; e < m_; ++e) {
+    const std::size_t i = static_cast<std::size_t>(e) * (n_ - 1) + j;
+    if (seg_weight_[i] == 0.0) {
+      seg_len_[i] = 0.0;
+      continue;
+    }
+    const auto& path = P_.actuators()[unknown_act_[e]].path;
+    seg_len_[i] = seg_weight_[i] * path.length_rate(s_mid, xk);
+    rates_[e] += seg_weight_[i] * path.unit_wrench(s_mid, xk).dot(xk_dot);  // d|u|/dt
+  }
+}
+
+bool SemiDiscreteRod::segment_pair(int j, int k) const {
+  const packed::Pose G = packed::inverse_compose(packed::load(g_[j], g_[k]),
+                                                 packed::load(g_[j + 1], g_[k + 1]));
+  packed::D2 e, f;
+  bool small_angles;
+  const packed::V6 x = packed::log(G, e, f, small_angles);  // ds xi
+  if (!small_angles) return false;
+  const double inv_ds = 1.0 / ds_;
+  const packed::V6 xi = inv_ds * x;
+  const packed::V6 rel = packed::load(eta_[j + 1], eta_[k + 1]) -
+                         packed::inverse_Ad_apply(G, packed::load(eta_[j], eta_[k]));
+  const packed::V6 xi_dot = inv_ds * packed::dexp_inv_apply(-1.0 * x, rel, e, f);
+  const double* K = P_.model().K_diag().data();
+  const packed::V6 sigma = packed::diag(K, xi - packed::load(xi_star_[j], xi_star_[k])) +
+                           packed::diag(V_.data(), xi_dot);  // (3.10)
+  const packed::V6 lambda = packed::dexp_inv_transpose_apply(x, sigma, e, f);
+  const packed::V6 moved = packed::coAd_apply(G, lambda);
+  const packed::D2 power = packed::dot(xi_dot, packed::diag(V_.data(), xi_dot));
+  for (int l = 0; l < 2; ++l) {
+    const int s = l == 0 ? j : k;
+    xi_[s] = packed::lane(xi, l);
+    xi_dot_[s] = packed::lane(xi_dot, l);
+    lambda_[s] = packed::lane(lambda, l);
+    moved_[s] = packed::lane(moved, l);
+    seg_diss_[s] = ds_ * power[l];
+    seg_work_[s] = 0.0;
+  }
+  return true;
+}
+
 void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& diss,
                                double& work, const double* forces, const double* x) const {
   unpack_nodes(y);
   const bool actuators = P_.has_actuators();
   if (actuators) F_ = P_.forces(t, x, rest_.data());
-  const double inv_ds = 1.0 / ds_;  // products, not divisions, in the loops
   if (m_ > 0) rates_.setZero();
-  for (int j = 0; j + 1 < n_; ++j) {
-    const SE3 G = g_[j].inverse_times(g_[j + 1]);
-    // The segment's angle is small (ds |kappa|): log, dexp^-1 and dexp^-T share the coefficients
-    // e, f of the small-angle kernels (as in `variational`); the two adjoint maps share R^T.
-    small::EF k;
-    const Vector6 x_seg = small::log(G, k);  // ds xi_j
-    xi_[j] = x_seg * inv_ds;
-    const lie::SE3Adjoints adjoints(G);
-    const Vector6 rel = eta_[j + 1] - adjoints.inverse_Ad_apply(eta_[j]);
-    xi_dot_[j] = small::dexp_inv_apply(-x_seg, rel, k) * inv_ds;
-    const double s_mid = (j + 0.5) * ds_;
-    // Kirchhoff rods: the rod's own force part is replaced by the constraint force (header).
-    Vector6 xk = model_strain(xi_[j], j), xk_dot = xi_dot_[j];
-    if (kirchhoff_) xk_dot.tail<3>().setZero();
-    Vector6 sigma = actuators ? P_.internal_wrench(xk, xk_dot, s_mid, F_)
-                              : P_.internal_wrench(xk, xk_dot, s_mid, t);
-    if (kirchhoff_ && forces) sigma.tail<3>() += Eigen::Map<const Vector3>(forces + 3 * j);
-    lambda_[j] = small::dexp_inv_transpose_apply(x_seg, sigma, k);
-    moved_[j] = adjoints.coAd_apply(lambda_[j]);
-    seg_diss_[j] = ds_ * xk_dot.dot(V_.cwiseProduct(xk_dot));
-    if (muscles_) seg_diss_[j] += ds_ * P_.embedded_dissipation(xk_dot, s_mid);
-    seg_work_[j] = actuators ? ds_ * P_.actuator_power(xk, xk_dot, s_mid, F_) : 0.0;
-    for (int e = 0; e < m_; ++e) {
-      const std::size_t i = static_cast<std::size_t>(e) * (n_ - 1) + j;
-      if (seg_weight_[i] == 0.0) {
-        seg_len_[i] = 0.0;
-        continue;
-      }
-      const auto& path = P_.actuators()[unknown_act_[e]].path;
-      seg_len_[i] = seg_weight_[i] * path.length_rate(s_mid, xk);
-      rates_[e] += seg_weight_[i] * path.unit_wrench(s_mid, xk).dot(xk_dot);  // d|u|/dt
-    }
+  // the plain rod's segments in pairs (the packed kernels), the others one by one
+  const bool pairs = packed_ && !actuators && !kirchhoff_ && !muscles_ && m_ == 0;
+  for (int j = 0; j + 1 < n_; j += 2) {
+    const int k = j + 2 < n_ ? j + 1 : j;  // an odd count: the last segment alone
+    if (pairs && k != j && segment_pair(j, k)) continue;
+    segment(j, t, actuators, forces);
+    if (k != j) segment(k, t, actuators, forces);
   }
   for (int e = 0; e < m_; ++e) {
     double sum = 0.0;
@@ -307,6 +349,7 @@ void SemiDiscreteRod::evaluate(double t, const double* y, double* f, double& dis
   diss = 0.0;
   work = 0.0;
   for (int j = 0; j + 1 < n_; ++j) diss += seg_diss_[j], work += seg_work_[j];
+  const double inv_ds = 1.0 / ds_;  // products, not divisions, in the loop
   for (int j = 1; j <= last_; ++j) {
     const bool tip = j == n_ - 1;
     const double w = tip ? 0.5 * ds_ : ds_, inv_w = tip ? 2.0 * inv_ds : inv_ds;

@@ -2,9 +2,11 @@
 // Two nodes or segments at once: the small-angle SE(3) kernels of lie/small_angle.hpp on pairs of
 // values held lane by lane in SSE2 registers (a structure of arrays: `x` holds both lanes' x
 // components), for the packed form of the plain variational step (variational_stepper.hpp,
-// Variational::packed_pass). Each kernel computes what its scalar namesake computes, with the
+// Variational::packed_pass) and the semi-discrete rod's segments (SemiDiscreteRod::segment_pair,
+// collocation's and ida's f). Each kernel computes what its scalar namesake computes, with the
 // same series where both lanes are below the scalar kernel's switch to a shorter one, else the
-// longer (the results agree to rounding, tests/dynamics/test_variational_packed.cpp). The
+// longer (the results agree to rounding, tests/dynamics/test_variational_packed.cpp,
+// test_semi_discrete_packed.cpp). The
 // caller checks the angle bounds (small_angle::kSmallAngle, kLogX2) and falls back to the
 // scalar kernels for a pair where either lane is above them. Private to solvers/dynamics.
 //
@@ -127,6 +129,11 @@ inline V6 coAd_apply(const Pose& g, const V6& W) {
   const Q ct = conjugate(g.q);
   return {rotate(ct, W.w - cross(g.p, W.v)), rotate(ct, W.v)};
 }
+/// SE3Adjoints::inverse_Ad_apply: Ad_{g^-1} xi = [R^T w; R^T (v - p x w)].
+inline V6 inverse_Ad_apply(const Pose& g, const V6& xi) {
+  const Q ct = conjugate(g.q);
+  return {rotate(ct, xi.w), rotate(ct, xi.v - cross(g.p, xi.w))};
+}
 /// se3::coad_apply: ad_xi^T lambda = [m x w + f x v; f x w].
 inline V6 coad_apply(const V6& xi, const V6& lambda) {
   return {cross(lambda.w, xi.w) + cross(lambda.v, xi.v), cross(lambda.v, xi.w)};
@@ -192,6 +199,18 @@ inline V6 dexp_inv_transpose_apply(const V6& xi, const V6& lambda, D2 e, D2 f) {
   const V3 AinvT_f = lambda.v + 0.5 * w_f + e * cross(w, w_f);
   const V3 CT_f = 0.5 * v_f + e * (cross(v, w_f) + cross(w, v_f)) + (dot(w, v) * f) * cross(w, w_f);
   return {AinvT_m + CT_f, AinvT_f};
+}
+
+/// small_angle::dexp_inv_apply with the coefficients e, f of |xi.w|: [A^-1 y_w; C y_w + A^-1 y_v].
+inline V6 dexp_inv_apply(const V6& xi, const V6& y, D2 e, D2 f) {
+  const V3& w = xi.w;
+  const V3& v = xi.v;
+  const V3 w_yw = cross(w, y.w), v_yw = cross(v, y.w);
+  const V3 top = y.w - 0.5 * w_yw + e * cross(w, w_yw);
+  const V3 Ainv_yv = y.v - 0.5 * cross(w, y.v) + e * cross(w, cross(w, y.v));
+  const V3 C_yw = -0.5 * v_yw + e * (cross(w, v_yw) + cross(v, w_yw)) +
+                  (dot(w, v) * f) * cross(w, w_yw);
+  return {top, C_yw + Ainv_yv};
 }
 
 /// solve_legendre (discrete_legendre.hpp) with a diagonal mass matrix M on both lanes: (3.42)

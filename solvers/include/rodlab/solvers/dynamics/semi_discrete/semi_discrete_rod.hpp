@@ -256,6 +256,10 @@ class SemiDiscreteRod {
   /// The times where a length-controlled actuator's schedule has a kink or a jump (restarts).
   std::vector<double> stabilised_breakpoints() const;
 
+  /// Whether f evaluates a plain rod's segments in pairs (packed_pair.hpp; default true, the
+  /// same f to rounding: tests/dynamics/test_semi_discrete_packed.cpp); false: one by one.
+  void set_packed(bool packed) { packed_ = packed; }
+
   /// Poses, velocities and strains of y for the reports below (y: size() or node_size()).
   void set_state(const ConstRef& y) const;
   /// Node poses and velocities (N each, base first) and segment strains xi_j (N - 1, (3.38)) of
@@ -312,6 +316,13 @@ class SemiDiscreteRod {
   /// the unknowns' path lengths into rates_ and their per-segment terms into seg_len_.
   void evaluate(double t, const double* y, double* f, double& diss, double& work,
                 const double* forces = nullptr, const double* x = nullptr) const;
+  /// Segment j's strain xi_, rate xi_dot_, stress wrench lambda_, its Ad_G^T (moved_) and its
+  /// ledger terms at the poses and velocities of g_, eta_.
+  void segment(int j, double t, bool actuators, const double* forces) const;
+  /// The same for segments j and k at once on packed_pair.hpp's two lanes (the plain rod: no
+  /// actuators, muscles or Kirchhoff constraint); false, with nothing stored, where a lane's
+  /// angle is above the small-angle kernels' bound.
+  bool segment_pair(int j, int k) const;
   void constraint(const double* y, double* c) const;
   /// Per-segment path-length terms of the unknowns at y into seg (m x (N - 1)); returns nothing.
   void segment_lengths(const double* y, std::vector<double>& seg) const;
@@ -350,6 +361,8 @@ class SemiDiscreteRod {
   bool clamped_ = false;  ///< the tip node is held by a clamp (not an unknown)
   int last_ = 0;          ///< the last unknown node: N - 1, or N - 2 with a clamped tip
   std::vector<Vector3> nu_star_;  ///< per segment: nu* of the span that holds it
+  std::vector<Vector6> xi_star_;  ///< per segment: xi* at its midpoint
+  bool packed_ = true;            ///< segment_pair where the scene allows it
   int dim_ = 0, iD_ = 0, iW_ = 0, iX_ = 0, m_ = 0;
   Vector6 M_, V_;
   // Actuator unknowns and embedded muscles (see above).
