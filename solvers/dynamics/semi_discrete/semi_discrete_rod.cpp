@@ -109,8 +109,10 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
   problem.model().require_spans_on_grid(n_, "the semi-discrete rod");
   nu_star_.resize(n_ - 1);
   xi_star_.resize(n_ - 1);
-  for (int j = 0; j + 1 < n_; ++j) xi_star_[j] = model.xi_star((j + 0.5) * ds_);
-  for (int j = 0; j + 1 < n_; ++j) nu_star_[j] = xi_star_[j].tail<3>();
+  for (int j = 0; j + 1 < n_; ++j) {
+    xi_star_[j] = model.xi_star((j + 0.5) * ds_);
+    nu_star_[j] = xi_star_[j].tail<3>();
+  }
   force_scale_ = EI / (L * L);
   const double e_bend = 0.5 * EI * std::pow(0.5 * std::numbers::pi / L, 2) * L;
   scale_.resize(dim_);

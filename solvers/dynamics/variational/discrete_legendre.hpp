@@ -94,18 +94,33 @@ struct LegendreContraction {
   /// S2 at the iterate x, or 1 (above every bound's range) where there is no bound.
   double S2(double dt, const lie::Vector6& x) const {
     if (cw2 < 0.0) return 1.0;
-    return dt * dt * (cw2 * x.head<3>().squaredNorm() + cv2 * x.tail<3>().squaredNorm());
+    return S2(dt * dt, x.head<3>().squaredNorm(), x.tail<3>().squaredNorm());
   }
-  /// (q / (1 - q))^2 for the zeroth-order step (|y|_M^2 = y2, |x|_M^2 = x2), else 1: the factor
-  /// of |y|_M^2 in its test.
+  /// S2 from dt^2 and |w|^2, |v|^2 (a double, or a packed pair of them: packed_pair.hpp).
+  template <class T>
+  T S2(double dt2, T w2, T v2) const {
+    return dt2 * (cw2 * w2 + cv2 * v2);
+  }
+  /// (q / (1 - q))^2, the factor of |y|_M^2 in the zeroth-order step's test, where S2 is in
+  /// range and |y|_M^2 <= kZerothRange |x|_M^2.
+  template <class T>
+  static T zeroth_order_bound(T S2) {
+    return kZerothFactor * S2;
+  }
+  /// 4 (q_N / (1 - q_N))^2, the factor of |step|_M^2 in a Newton step's test (below 0.08), where
+  /// S2 is in range and |step|_M^2 <= kNewtonRange |x|_M^2.
+  template <class T>
+  T newton_bound(T S2) const {
+    const T qN = kNewtonS2 * S2 + step_floor;
+    return kNewtonFactor * qN * qN;
+  }
+  /// The factors with their ranges, else 1 (the plain tests): |y|_M^2 = y2, |step|_M^2 = s2,
+  /// |x|_M^2 = x2.
   static double zeroth_order_factor(double S2, double y2, double x2) {
-    return S2 <= kRange && y2 <= kZerothRange * x2 ? kZerothFactor * S2 : 1.0;
+    return S2 <= kRange && y2 <= kZerothRange * x2 ? zeroth_order_bound(S2) : 1.0;
   }
-  /// 4 (q_N / (1 - q_N))^2 for a Newton step (|step|_M^2 = s2, |x|_M^2 = x2 after it), else 1
-  /// (the plain test |step|_M <= tol |x|_M): the factor of |step|_M^2 in its test (below 0.08).
   double newton_factor(double S2, double s2, double x2) const {
-    const double qN = kNewtonS2 * S2 + step_floor;
-    return S2 <= kRange && s2 <= kNewtonRange * x2 ? kNewtonFactor * qN * qN : 1.0;
+    return S2 <= kRange && s2 <= kNewtonRange * x2 ? newton_bound(S2) : 1.0;
   }
 };
 

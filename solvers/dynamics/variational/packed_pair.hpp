@@ -235,7 +235,7 @@ inline int solve_legendre(const double* M, const double* M_inv,
   const double tol2 = tol * tol;
   using C = LegendreContraction;
   const bool bounded = contraction.cw2 >= 0.0;
-  const double cw2 = dt * dt * contraction.cw2, cv2 = dt * dt * contraction.cv2;
+  const double dt2 = dt * dt;
   for (int it = 1; it < max_iterations; ++it) {
     const V6 dx = dt * x;
     const D2 t2 = dot(dx.w, dx.w);
@@ -251,9 +251,9 @@ inline int solve_legendre(const double* M, const double* M_inv,
     // did not end the solve
     D2 S2 = splat(1.0);
     if (bounded && !((done | first)[0] && (done | first)[1])) {
-      S2 = cw2 * dot(x.w, x.w) + cv2 * dot(x.v, x.v);
+      S2 = contraction.S2(dt2, dot(x.w, x.w), dot(x.v, x.v));
       const Mask in_range = (S2 <= C::kRange) & (y2 <= C::kZerothRange * x2);
-      first |= ~done & in_range & (C::kZerothFactor * S2 * y2 <= 0.25 * tol2 * x2);
+      first |= ~done & in_range & (C::zeroth_order_bound(S2) * y2 <= 0.25 * tol2 * x2);
     }
     result = select(first, x - y, result);
     done |= first;
@@ -264,9 +264,9 @@ inline int solve_legendre(const double* M, const double* M_inv,
     const V6 step = newton_step(r, x, Mx);
     x = x - step;
     const D2 s2 = dot(step, diag(M, step)), xn2 = dot(x, diag(M, x));
-    const D2 qN = C::kNewtonS2 * S2 + contraction.step_floor;
-    const D2 newton =
-        (S2 <= C::kRange) & (s2 <= C::kNewtonRange * xn2) ? C::kNewtonFactor * qN * qN : splat(1.0);
+    const D2 newton = (S2 <= C::kRange) & (s2 <= C::kNewtonRange * xn2)
+                          ? contraction.newton_bound(S2)
+                          : splat(1.0);
     const Mask second = ~done & (newton * s2 <= tol2 * xn2);
     result = select(second, x, result);
     done |= second;

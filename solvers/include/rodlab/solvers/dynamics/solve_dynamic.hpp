@@ -73,7 +73,6 @@ RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem
 /// schemes that take the thesis' Euler grid (solver.grid: euler); the others ignore it.
 bool marches_in_s(std::string_view scheme);
 
-
 /// Why options.scheme cannot run at the step dt on `problem`, or "" when it can: single
 /// shooting (implicit-midpoint, bdf-alpha) has a lower step bound (step_bound.hpp). Runs are
 /// refused with it before they start (solve_dynamic, rodlab.Simulation).
