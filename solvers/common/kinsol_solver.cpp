@@ -11,6 +11,7 @@
 
 #include "rodlab/check.hpp"
 
+#include "almost_block_diagonal_solver.hpp"
 #include "condensed_block_solver.hpp"
 #include "kept_klu_solver.hpp"
 #include "sundials_support.hpp"
@@ -109,6 +110,14 @@ struct KinsolSolver::Impl {
             "(newton_linear_solver.hpp)");
       return;
     }
+    if (linear == NewtonLinearSolver::almost_block_diagonal) {
+      linear_solver.reset(sundials::make_almost_block_diagonal_solver(A.get(), ctx));
+      if (!linear_solver)
+        throw std::invalid_argument(
+            "KinsolSolver: almost_block_diagonal needs a pattern of its form "
+            "(newton_linear_solver.hpp)");
+      return;
+    }
     linear_solver.reset(
         kept ? sundials::check_created(
                    sundials::make_kept_klu_solver(n, ctx, natural, reuse == KluReuse::factors),
@@ -197,6 +206,8 @@ void KinsolSolver::assign(const KinsolSolver& other) {
   // SUNLinSol_KLU analyses and factorises afresh at the start of every solve: nothing is kept.
   if (d.linear == NewtonLinearSolver::condensed_rod_blocks)
     sundials::assign_condensed_block(d.linear_solver.get(), o.linear_solver.get());
+  else if (d.linear == NewtonLinearSolver::almost_block_diagonal)
+    sundials::assign_almost_block_diagonal(d.linear_solver.get(), o.linear_solver.get());
   else if (d.reuse != KluReuse::none)
     sundials::assign_kept_klu(d.linear_solver.get(), o.linear_solver.get());
 }

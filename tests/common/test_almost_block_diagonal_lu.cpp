@@ -1,0 +1,213 @@
+#define BOOST_TEST_MODULE almost_block_diagonal_lu
+#include <boost/test/unit_test.hpp>
+
+// The almost block diagonal LU (solvers/common/almost_block_diagonal_lu.hpp) and the KINSOL
+// linear solver built on it (NewtonLinearSolver::almost_block_diagonal), against Eigen's dense
+// LU with partial pivoting (Eigen::PartialPivLU) of the same matrix: random staircase matrices
+// (T rows on the first block, B rows on each pair of neighbouring blocks, B - T on the last) at
+// several (B, T) and block counts, with the pivots in place and with zero diagonals that force
+// interchanges; the pivots themselves, which must be dense partial pivoting's; a pattern with
+// holes in the staircase; the refusals (an entry outside the staircase, a singular matrix); and
+// KINSOL solving a linear system through it.
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+
+#include "../../solvers/common/almost_block_diagonal_lu.hpp"
+#include "rodlab/solvers/common/kinsol_solver.hpp"
+
+namespace {
+
+using rodlab::solvers::AlmostBlockDiagonalLU;
+using Dense = Eigen::MatrixXd;
+using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor>;
+
+/// The block columns row r of a staircase matrix with `blocks` blocks of B and T top rows may
+/// have entries in: [first, last].
+std::pair<int, int> row_blocks(int B, int T, int blocks, int r) {
+  if (r < T) return {0, 0};
+  const int interval = (r - T) / B;
+  if (interval >= blocks - 1) return {blocks - 1, blocks - 1};
+  return {interval, interval + 1};
+}
+
+/// A random staircase matrix, its entries uniform in [-1, 1]; `zero_diagonal` zeroes A(i, i),
+/// so that no pivot can stay in place.
+Dense random_staircase(int B, int T, int blocks, unsigned seed, bool zero_diagonal = false) {
+  const int n = B * blocks;
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Dense A = Dense::Zero(n, n);
+  for (int r = 0; r < n; ++r) {
+    const auto [first, last] = row_blocks(B, T, blocks, r);
+    for (int c = B * first; c < B * (last + 1); ++c) A(r, c) = u(gen);
+    if (zero_diagonal) A(r, r) = 0.0;
+  }
+  return A;
+}
+
+/// The staircase as a CSC pattern with A's values; `holes` leaves out the structural zeros of A
+/// (a pattern narrower than the staircase), otherwise every staircase position is in it.
+Sparse staircase_pattern(const Dense& A, int B, int T, bool holes = false) {
+  const int n = static_cast<int>(A.rows()), blocks = n / B;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int r = 0; r < n; ++r) {
+    const auto [first, last] = row_blocks(B, T, blocks, r);
+    for (int c = B * first; c < B * (last + 1); ++c)
+      if (!holes || A(r, c) != 0.0) t.emplace_back(r, c, A(r, c));
+  }
+  Sparse S(n, n);
+  S.setFromTriplets(t.begin(), t.end());
+  S.makeCompressed();
+  return S;
+}
+
+/// Factorises A through its staircase pattern and returns the normwise backward error
+/// |A x - b| / (|A| |x| + |b|) of the solve (Frobenius norms), and the largest relative
+/// difference of the pivots from those of Eigen's dense partial-pivoting LU in *pivots.
+template <int B, int T>
+double backward_error(const Dense& A, double* pivots, bool holes = false) {
+  const Sparse S = staircase_pattern(A, B, T, holes);
+  AlmostBlockDiagonalLU<B, T> lu(static_cast<int>(A.rows()) / B);
+  BOOST_REQUIRE(lu.map_pattern(S.outerIndexPtr(), S.innerIndexPtr()));
+  BOOST_REQUIRE(lu.factor(S.valuePtr()));
+  const Eigen::PartialPivLU<Dense> dense(A);
+  *pivots = 0.0;
+  for (int i = 0; i < A.rows(); ++i) {
+    const double d = dense.matrixLU()(i, i);
+    *pivots = std::max(*pivots, std::abs(lu.pivot(i) - d) / std::abs(d));
+  }
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 2.0);
+  Eigen::VectorXd x = b;
+  lu.solve(x.data());
+  return (A * x - b).norm() / (A.norm() * x.norm() + b.norm());
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(solves_like_a_dense_lu_with_its_pivots) {
+  // Dense partial pivoting chooses among the same rows, so the pivots agree with Eigen's to
+  // rounding (measured below 1e-12 relative) and the backward errors are a few eps (measured:
+  // see the log; Eigen's dense LU gives the same order).
+  for (const bool zero_diagonal : {false, true})
+    for (unsigned seed = 1; seed <= 3; ++seed)
+      for (const int blocks : {1, 2, 9}) {
+        double p1 = 0.0, p2 = 0.0, p3 = 0.0;
+        const double e1 =
+            backward_error<2, 1>(random_staircase(2, 1, blocks, seed, zero_diagonal), &p1);
+        const double e2 =
+            backward_error<5, 3>(random_staircase(5, 3, blocks, seed, zero_diagonal), &p2);
+        const double e3 =
+            backward_error<13, 7>(random_staircase(13, 7, blocks, seed, zero_diagonal), &p3);
+        BOOST_TEST_MESSAGE("zero diagonal " << zero_diagonal << ", seed " << seed << ", "
+                                            << blocks << " blocks: backward errors " << e1
+                                            << ", " << e2 << ", " << e3 << "; pivots " << p1
+                                            << ", " << p2 << ", " << p3);
+        BOOST_TEST(e1 <= 1e-15);
+        BOOST_TEST(e2 <= 1e-15);
+        BOOST_TEST(e3 <= 1e-15);
+        BOOST_TEST(std::max({p1, p2, p3}) <= 1e-10);
+      }
+}
+
+BOOST_AUTO_TEST_CASE(a_pattern_with_holes_and_a_second_factorisation) {
+  // A pattern narrower than the staircase: the panels' positions outside it must read as
+  // zeros, also after a factorisation of other values has filled them.
+  Dense A = random_staircase(13, 7, 6, 21);
+  for (int r = 0; r < A.rows(); r += 3) A(r, (r * 7) % A.cols()) = 0.0;  // some holes
+  const Sparse S = staircase_pattern(A, 13, 7, true);
+  AlmostBlockDiagonalLU<13, 7> lu(6);
+  BOOST_REQUIRE(lu.map_pattern(S.outerIndexPtr(), S.innerIndexPtr()));
+  for (const double scale : {1.0, -3.0}) {
+    const Dense As = scale * A;
+    const Sparse Ss = scale * S;
+    BOOST_REQUIRE(lu.factor(Ss.valuePtr()));
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(As.rows(), 2.0, -1.0);
+    Eigen::VectorXd x = b;
+    lu.solve(x.data());
+    const double error = (As * x - b).norm() / (As.norm() * x.norm() + b.norm());
+    BOOST_TEST_MESSAGE("scale " << scale << ": backward error " << error);
+    BOOST_TEST(error <= 1e-15);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(refuses_what_it_cannot_solve) {
+  const Dense A = random_staircase(5, 3, 4, 7);
+  const Sparse S = staircase_pattern(A, 5, 3);
+  // Entries outside the staircase: a top row on block 1, an interval row on a block two
+  // away, a tip row on the block before the last.
+  for (const auto& [row, col] : {std::pair{1, 6}, std::pair{4, 12}, std::pair{18, 10}}) {
+    Sparse wide = S;
+    wide.coeffRef(row, col) = 1.0;
+    wide.makeCompressed();
+    AlmostBlockDiagonalLU<5, 3> lu(4);
+    BOOST_TEST(!lu.map_pattern(wide.outerIndexPtr(), wide.innerIndexPtr()),
+               "row " << row << ", column " << col);
+  }
+  // Singular: a block column without non-zeros, and two equal rows.
+  for (const bool equal_rows : {false, true}) {
+    Sparse singular = S;
+    if (equal_rows) {
+      const Dense B = [&] {
+        Dense M = A;
+        M.row(5) = M.row(4);
+        return M;
+      }();
+      singular = staircase_pattern(B, 5, 3);
+    } else {
+      singular = staircase_pattern(A, 5, 3);
+      for (Sparse::InnerIterator it(singular, 7); it; ++it) it.valueRef() = 0.0;
+    }
+    AlmostBlockDiagonalLU<5, 3> lu(4);
+    BOOST_REQUIRE(lu.map_pattern(singular.outerIndexPtr(), singular.innerIndexPtr()));
+    BOOST_TEST(!lu.factor(singular.valuePtr()), (equal_rows ? "equal rows" : "zero column"));
+    BOOST_TEST(!lu.factored());
+  }
+}
+
+BOOST_AUTO_TEST_CASE(kinsol_solves_through_it) {
+  // F(x) = A x - b with A of kinsol statics' shape (13 = 7 + 6, 8 blocks), zero diagonal:
+  // KINSOL's Newton step is exact, so one iteration solves it to the linear solver's rounding.
+  using rodlab::solvers::KinsolSolver;
+  using rodlab::solvers::KluOrder;
+  using rodlab::solvers::KluReuse;
+  using rodlab::solvers::NewtonLinearSolver;
+  const Dense A = random_staircase(13, 7, 8, 11, true);
+  const Sparse pattern = staircase_pattern(A, 13, 7);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), 1.0, -1.0);
+  KinsolSolver solver(pattern, KluReuse::analysis, KluOrder::natural,
+                      NewtonLinearSolver::almost_block_diagonal);
+  rodlab::solvers::KinsolOptions o;
+  o.fnormtol = 1e-12;
+  o.line_search = false;
+  o.max_newton_step = 1e12;  // KINSOL's default bound scales with |x0| = 0; here |x| = 52
+  auto run = [&](KinsolSolver& s) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(A.rows());
+    const auto stats = s.solve(
+        x, [&](const auto& u, auto F) { F = A * u - b; },
+        [&](const auto&, const auto&, Sparse& J) {
+          for (int col = 0; col < J.outerSize(); ++col)
+            for (Sparse::InnerIterator it(J, col); it; ++it) it.valueRef() = A(it.row(), col);
+        },
+        o);
+    BOOST_TEST(stats.converged, stats.flag_name << ": " << stats.message);
+    BOOST_TEST(stats.nonlinear_iterations <= 2);  // exact Newton steps (a wrong solve iterates)
+    return x;
+  };
+  const Eigen::VectorXd x = run(solver);
+  const double error = (x - A.partialPivLu().solve(b)).norm() / x.norm();
+  BOOST_TEST_MESSAGE("relative error against the dense LU " << error << ", |x| " << x.norm());
+  BOOST_TEST(error <= 1e-13);
+  KinsolSolver copy(solver);  // its own linear solver, in the state of the original
+  BOOST_TEST((run(copy) - x).norm() == 0.0);
+  // A pattern outside the staircase: refused at construction.
+  Sparse wide = pattern;
+  wide.coeffRef(0, 40) = 1.0;
+  BOOST_CHECK_THROW(KinsolSolver(wide, KluReuse::analysis, KluOrder::natural,
+                                 NewtonLinearSolver::almost_block_diagonal),
+                    std::invalid_argument);
+}
