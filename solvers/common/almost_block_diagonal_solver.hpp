@@ -1,10 +1,12 @@
 #pragma once
 // A SUNLinearSolver for almost block diagonal Jacobians (almost_block_diagonal_lu.hpp): kinsol
-// statics' collocation without extra unknowns, blocks of a node's 13 unknowns, 7 base rows on
-// the first block and 6 tip rows on the last. Every setup factorises by partial pivoting panel
-// by panel (the factors of dense partial pivoting, so no fallback is needed); a singular matrix
-// is a recoverable failure (SUNLS_LUFACT_FAIL), as KLU's is. Private to solvers/common (includes
-// SUNDIALS headers).
+// statics' collocation, blocks of a node's 13 unknowns, 7 base rows on the first block and 6 tip
+// rows on the last, optionally bordered by dense rows and columns (its extra unknowns). Every
+// setup factorises: without a border by partial pivoting panel by panel (dense partial
+// pivoting's factors, so a singular matrix is a recoverable failure, SUNLS_LUFACT_FAIL, as
+// KLU's is); with one by block LU on those factors, and a kept KLU solver (natural order, fresh
+// pivots at every KINSol call) factorises the matrices whose pivots look ill-conditioned.
+// Private to solvers/common (includes SUNDIALS headers).
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
@@ -15,8 +17,9 @@ namespace rodlab::solvers::sundials {
 inline constexpr int kAbdBlock = 13, kAbdTop = 7;
 
 /// A new solver owned by the caller (SUNLinSolFree releases it), for CSC SUNSparseMatrix
-/// Jacobians with the pattern of `pattern` (n a multiple of 13). NULL when the pattern is not of
-/// that form or on allocation failure.
+/// Jacobians with the pattern of `pattern`: the border is its trailing columns that hold every
+/// row (at most 32), the rest 13 per block. NULL when the pattern is not of that form or on
+/// allocation failure.
 SUNLinearSolver make_almost_block_diagonal_solver(SUNMatrix pattern, SUNContext ctx);
 
 /// Makes dst's factors a copy of src's, both solvers of the same size (KinsolSolver::assign).

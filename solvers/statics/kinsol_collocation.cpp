@@ -70,11 +70,6 @@ class Collocation {
   int size() const { return kState * N_ + extra_; }
   /// What pattern() depends on: the nodes and the extra unknowns.
   std::pair<int, int> pattern_key() const { return {N_, extra_}; }
-  /// Without extra unknowns the Jacobian is almost block diagonal (base rows, intervals, tip
-  /// rows); the extra unknowns' dense rows and columns need a general sparse LU.
-  NewtonLinearSolver linear_solver() const {
-    return extra_ ? NewtonLinearSolver::klu : NewtonLinearSolver::almost_block_diagonal;
-  }
   double s(int i) const { return s_[i]; }
 
   /// Node i's data from the scaled unknowns x (the extra unknowns must be set in P_).
@@ -548,11 +543,11 @@ class Collocation {
 
 /// KINSOL for the collocation's pattern, kept on this thread from one solve to the next of the
 /// same pattern (repeated solves: a study's sweep, the inverse statics and controllers that call
-/// the statics as their model, the benchmarks): its SUNDIALS objects, and with extra unknowns
-/// KLU's analysis, are made once (KluReuse::analysis). Without extra unknowns the Newton systems
-/// go to the almost block diagonal LU (Collocation::linear_solver), which has no analysis and
-/// factorises at every setup. Every KINSOL run factorises its first Jacobian afresh, so a solve
-/// does not depend on the ones before; with KLU, keeping the factors too
+/// the statics as their model, the benchmarks): its SUNDIALS objects are made once. The Newton
+/// systems go to the almost block diagonal LU (the Jacobian's staircase, bordered by the extra
+/// unknowns' dense rows and columns; KLU, analysed once, for a bordered matrix it refuses). Every
+/// KINSOL run factorises its first Jacobian afresh, so a solve does not depend on the ones
+/// before; with KLU alone, keeping the factors too
 /// (refactorising on the last solve's pivots) was faster still, 1.9 against 2.1 ms at N = 100,
 /// but lost kinsol's large-tension case (tests/statics/test_chebyshev_actuators.cpp, N = 161):
 /// pivots from the previous continuation step left its line search without descent. A solve
@@ -563,7 +558,7 @@ class ThreadSolver {
     Slot& slot = this_thread_slot();
     auto make = [&C] {
       return std::make_unique<KinsolSolver>(C.pattern(), KluReuse::analysis, KluOrder::natural,
-                                            C.linear_solver());
+                                            NewtonLinearSolver::almost_block_diagonal);
     };
     if (slot.in_use) {
       own_ = make();

@@ -14,10 +14,11 @@ namespace rodlab::solvers {
 /// (docs/dynamics.md "implicit-midpoint-collocation", "ida").
 /// `almost_block_diagonal`: for a two-point boundary-value problem's Jacobian in blocks of 13
 /// unknowns, 7 rows on the first block, 13 rows on each pair of neighbouring blocks and 6 on the
-/// last (kinsol statics without extra unknowns): partial pivoting panel by panel, the factors of
-/// dense partial pivoting at a fraction of KLU's cost (almost_block_diagonal_lu.hpp; docs/
-/// statics.md "Cost"). KluReuse and KluOrder do not apply to it: it has nothing to analyse and
-/// factorises at every setup.
+/// last, optionally bordered by up to 32 dense rows and columns (kinsol statics and its extra
+/// unknowns): partial pivoting panel by panel, the factors of dense partial pivoting at a
+/// fraction of KLU's cost, and the border by block LU on them (KLU factorises a bordered matrix
+/// whose pivots look ill-conditioned; almost_block_diagonal_lu.hpp, docs/statics.md "Cost").
+/// KluReuse and KluOrder do not apply to it: it factorises at every setup.
 enum class NewtonLinearSolver { klu, condensed_rod_blocks, almost_block_diagonal };
 
 }  // namespace rodlab::solvers
