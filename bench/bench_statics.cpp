@@ -1,12 +1,15 @@
 // Statics benchmarks on the gravity cantilever (thesis Table 2.1 rod, gravity along -x, rod
 // along +z): one complete static solve per available scheme, and one RK4 shooting integration
-// (the hot path of shooting). Run: build/bin/bench_statics --benchmark_repetitions=5
+// (the hot path of shooting); and kinsol on scenes/muscle.yaml at N = 100, whose muscle length
+// is an extra unknown (the Jacobian's bordered form). Run: build/bin/bench_statics
+// --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
 #include "bench_main.hpp"
 
 #include <string>
 
+#include "rodlab/io/scene_loader.hpp"
 #include "rodlab/solvers/schemes.hpp"
 #include "rodlab/solvers/statics/rkmk.hpp"
 #include "rodlab/solvers/statics/shooting.hpp"
@@ -54,6 +57,22 @@ void one_integration(benchmark::State& state) {
       static_cast<double>(nodes - 1), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(one_integration)->Arg(100);
+
+void kinsol_muscle(benchmark::State& state) {
+  const auto scene = io::load_scene(std::string(RODLAB_SOURCE_DIR) + "/scenes/muscle.yaml");
+  const StaticProblem problem = StaticProblem::from_scene(scene);
+  const StaticSolveOptions options{"kinsol", 100, 1e-10, 50};
+  int iterations = 0;
+  for (auto _ : state) {
+    const auto r = solve_static(problem, options);
+    iterations = r.iterations;
+    benchmark::DoNotOptimize(r.centerline.back().pose);
+  }
+  state.counters["nodes"] = options.nodes;
+  state.counters["newton_iterations"] = iterations;
+  state.counters["extra_unknowns"] = problem.extra_unknowns();
+}
+BENCHMARK(kinsol_muscle)->Unit(benchmark::kMicrosecond);
 
 const bool registered = [] {
   for (const auto& s : solvers::all_schemes()) {

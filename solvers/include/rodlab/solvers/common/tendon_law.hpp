@@ -8,9 +8,8 @@
 // muscle stiffness), K + 2 V / dt in an implicit-midpoint step. Kirchhoff rods solve the moment
 // rows for omega only and keep nu = nu_ref. `add_tendons(xi, r, J)` adds sum_k F_k c_k(xi) to r
 // and its Jacobian to J.
-#include <Eigen/LU>
-
 #include "rodlab/lie/se3.hpp"
+#include "rodlab/solvers/common/small_lu.hpp"
 
 namespace rodlab::solvers {
 
@@ -28,9 +27,9 @@ lie::Vector6 solve_tendon_law(const lie::Matrix6& Kt, const lie::Vector6& xi_ref
     add_tendons(xi, r, J);
     lie::Vector6 dxi = lie::Vector6::Zero();
     if (kirchhoff)
-      dxi.head<3>() = -J.topLeftCorner<3, 3>().partialPivLu().solve(lie::Vector3(r.head<3>()));
+      dxi.head<3>() = -solve_partial_pivoting<3>(J.topLeftCorner<3, 3>(), r.head<3>());
     else
-      dxi = -J.partialPivLu().solve(r);
+      dxi = -solve_partial_pivoting<6>(J, r);
     xi += dxi;
     if (!xi.allFinite()) break;
     if (dxi.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + (xi - xi_ref).lpNorm<Eigen::Infinity>()))
