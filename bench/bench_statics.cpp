@@ -31,9 +31,9 @@ StaticProblem gravity_cantilever(rod::ModelKind kind) {
 
 int nodes_for(std::string_view scheme) { return scheme == "chebyshev" ? 24 : 100; }
 
-void solve_benchmark(benchmark::State& state, std::string scheme, rod::ModelKind kind) {
-  const StaticProblem problem = gravity_cantilever(kind);
-  const StaticSolveOptions options{scheme, nodes_for(scheme), 1e-10, 50};
+/// Repeated solves of the problem, with the nodes and the last solve's Newton iterations.
+void run_solves(benchmark::State& state, const StaticProblem& problem,
+                const StaticSolveOptions& options) {
   int iterations = 0;
   for (auto _ : state) {
     const auto r = solve_static(problem, options);
@@ -42,6 +42,10 @@ void solve_benchmark(benchmark::State& state, std::string scheme, rod::ModelKind
   }
   state.counters["nodes"] = options.nodes;
   state.counters["newton_iterations"] = iterations;
+}
+
+void solve_benchmark(benchmark::State& state, std::string scheme, rod::ModelKind kind) {
+  run_solves(state, gravity_cantilever(kind), {scheme, nodes_for(scheme), 1e-10, 50});
 }
 
 void one_integration(benchmark::State& state) {
@@ -61,15 +65,7 @@ BENCHMARK(one_integration)->Arg(100);
 void kinsol_muscle(benchmark::State& state) {
   const auto scene = io::load_scene(std::string(RODLAB_SOURCE_DIR) + "/scenes/muscle.yaml");
   const StaticProblem problem = StaticProblem::from_scene(scene);
-  const StaticSolveOptions options{"kinsol", 100, 1e-10, 50};
-  int iterations = 0;
-  for (auto _ : state) {
-    const auto r = solve_static(problem, options);
-    iterations = r.iterations;
-    benchmark::DoNotOptimize(r.centerline.back().pose);
-  }
-  state.counters["nodes"] = options.nodes;
-  state.counters["newton_iterations"] = iterations;
+  run_solves(state, problem, {"kinsol", 100, 1e-10, 50});
   state.counters["extra_unknowns"] = problem.extra_unknowns();
 }
 BENCHMARK(kinsol_muscle)->Unit(benchmark::kMicrosecond);

@@ -51,6 +51,8 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include "rodlab/solvers/common/small_lu.hpp"
+
 namespace rodlab::solvers {
 
 template <int B, int T>
@@ -145,7 +147,8 @@ class AlmostBlockDiagonalLU {
     for (int j = 0; j < nb_; ++j) {
       Panel& P = panels_[j];
       if (!eliminate(P, lower_[j], pivots_[j])) return false;
-      if (j + 1 < nb_) panels_[j + 1].template topLeftCorner<T, B>() = P.template bottomRightCorner<T, B>();
+      if (j + 1 < nb_)  // the carried rows
+        panels_[j + 1].template topLeftCorner<T, B>() = P.template bottomRightCorner<T, B>();
     }
     if (m_) {
       if (!well_conditioned(false)) return false;
@@ -259,13 +262,8 @@ class AlmostBlockDiagonalLU {
   static bool eliminate(Panel& P, Lower& L, Pivots& p) {
     L.setZero();
     for (int k = 0; k < B; ++k) {
-      int best = k;
-      double largest = std::abs(P(k, k));
-      for (int r = k + 1; r < R; ++r)
-        if (std::abs(P(r, k)) > largest) {
-          largest = std::abs(P(r, k));
-          best = r;
-        }
+      const int best = pivot_row(P, k, R);
+      const double largest = std::abs(P(best, k));
       if (!(largest > 0.0) || !std::isfinite(largest)) return false;
       p[k] = best;
       if (best != k) {

@@ -1,8 +1,8 @@
 #pragma once
-// The SUNLinearSolver shell of rodlab's own direct solvers (kept_klu_solver.cpp,
-// condensed_block_solver.cpp): a content object that the solver owns, and the operations that
-// every direct solver of custom ID has alike. Private to solvers/common (includes SUNDIALS
-// headers).
+// The SUNLinearSolver shell of rodlab's own direct solvers (kept_klu_solver.cpp, and the
+// structured LUs with a KLU fallback of fallback_solver_shell.hpp): a content object that the
+// solver owns, and the operations that every direct solver of custom ID has alike. Private to
+// solvers/common (includes SUNDIALS headers).
 #include <sundials/sundials_linearsolver.h>
 
 namespace rodlab::solvers::sundials {

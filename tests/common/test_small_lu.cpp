@@ -18,11 +18,13 @@ template <int N>
 void check_against_eigen(unsigned seed, bool zero_diagonal) {
   std::mt19937 gen(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::Matrix<double, N, N> A = Eigen::Matrix<double, N, N>::NullaryExpr([&] { return u(gen); });
+  using Matrix = Eigen::Matrix<double, N, N>;
+  using Vector = Eigen::Matrix<double, N, 1>;
+  Matrix A = Matrix::NullaryExpr([&] { return u(gen); });
   if (zero_diagonal) A.diagonal().setZero();
-  const Eigen::Matrix<double, N, 1> b = Eigen::Matrix<double, N, 1>::NullaryExpr([&] { return u(gen); });
-  const Eigen::Matrix<double, N, 1> x = rodlab::solvers::solve_partial_pivoting<N>(A, b);
-  const Eigen::Matrix<double, N, 1> reference = A.partialPivLu().solve(b);
+  const Vector b = Vector::NullaryExpr([&] { return u(gen); });
+  const Vector x = rodlab::solvers::solve_partial_pivoting<N>(A, b);
+  const Vector reference = A.partialPivLu().solve(b);
   const double backward = (A * x - b).norm() / (A.norm() * x.norm() + b.norm());
   const double difference = (x - reference).norm() / reference.norm();
   const double condition = A.norm() * A.inverse().norm();

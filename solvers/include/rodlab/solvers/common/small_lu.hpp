@@ -13,18 +13,26 @@
 
 namespace rodlab::solvers {
 
+/// Partial pivoting's choice in column k: the row r in [k, rows) of the largest |A(r, k)|, the
+/// first of equals (almost_block_diagonal_lu.hpp's panels use it too).
+template <class Matrix>
+int pivot_row(const Matrix& A, int k, int rows) {
+  int pivot = k;
+  double largest = std::abs(A(k, k));
+  for (int r = k + 1; r < rows; ++r)
+    if (std::abs(A(r, k)) > largest) {
+      largest = std::abs(A(r, k));
+      pivot = r;
+    }
+  return pivot;
+}
+
 template <int N>
 Eigen::Matrix<double, N, 1> solve_partial_pivoting(const Eigen::Matrix<double, N, N>& matrix,
                                                     Eigen::Matrix<double, N, 1> b) {
   Eigen::Matrix<double, N, N, Eigen::RowMajor> A = matrix;
   for (int k = 0; k < N; ++k) {
-    int pivot = k;
-    double largest = std::abs(A(k, k));
-    for (int r = k + 1; r < N; ++r)
-      if (std::abs(A(r, k)) > largest) {
-        largest = std::abs(A(r, k));
-        pivot = r;
-      }
+    const int pivot = pivot_row(A, k, N);
     if (pivot != k) {
       A.row(k).swap(A.row(pivot));
       std::swap(b[k], b[pivot]);

@@ -1,6 +1,6 @@
 #pragma once
 // The `kinsol` statics reference: a global collocation of the statics BVP (2.33)-(2.34),
-// solved at once by SUNDIALS KINSOL (Newton with a line search) with a sparse KLU Jacobian.
+// solved at once by SUNDIALS KINSOL (Newton with a line search) with a sparse Jacobian.
 //
 // Scheme: Runge-Kutta-Munthe-Kaas with the 3-stage Lobatto IIIA tableau (Hermite-Simpson),
 // written as a collocation. N uniform nodes s_i = i h, h = L / (N - 1) (with actuators, also
@@ -45,10 +45,12 @@
 //
 // Jacobian. Node j enters only intervals j-1 and j (and the base or tip rows), so the columns
 // of node j hold one contiguous block of at most 26 rows: a block-bidiagonal pattern, fixed once,
-// factorised by KLU. The values are forward differences node by node that re-evaluate only the
-// node's data and the two intervals it touches (the same values as a 3-colour grouping of node
-// blocks at a third of the cost: 13 columns x ~3 stage evaluations per node); the base rows are
-// exact. Exact Newton: the Jacobian is re-evaluated at every iteration.
+// factorised by the almost block diagonal LU (partial pivoting panel by panel; the extra
+// unknowns' dense rows and columns by block LU, KLU where that looks ill-conditioned:
+// almost_block_diagonal_lu.hpp). The values are forward differences node by node that
+// re-evaluate only the node's data and the two intervals it touches (the same values as a
+// 3-colour grouping of node blocks at a third of the cost: 13 columns x ~3 stage evaluations per
+// node); the base rows are exact. Exact Newton: the Jacobian is re-evaluated at every iteration.
 //
 // Actuators (docs/statics.md). The mesh has a node at every StaticProblem::breakpoints() value
 // (span ends, routing knots): the N - 1 intervals are shared among the stretches between
