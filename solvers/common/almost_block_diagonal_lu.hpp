@@ -35,10 +35,10 @@
 // A row operation runs over the whole fixed-size 2B-wide panel row (its entries left of the
 // pivot column are zero): 2 B^2 (2T + B - 1) flops per block to factorise, 8.8 kflop for
 // kinsol's B = 13, T = 7, in vectorised fixed-size loops, and about 4 B (T + B) to solve; a
-// sparse LU of the same matrix (KLU) does fewer flops but spends more on its index work (docs/
-// statics.md "Cost"). Fixed-size panels: no
-// allocation after construction. Private to solvers/common; Eigen only (tests/common
-// instantiate it at small sizes).
+// sparse LU of the same matrix (KLU) does fewer flops but spends more on its index work
+// (docs/statics.md "Cost"). Fixed-size panels and a border of at most kMaxBorder: no allocation
+// after construction. Private to solvers/common; Eigen only (tests/common instantiate it at
+// small sizes).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -98,13 +98,18 @@ class AlmostBlockDiagonalLU {
   bool accept_pattern(const Index* Ap, const Index* Ai) {
     const long n = B * nb_;
     long staircase = 0;
-    for (int c = 0; c < n; ++c)
+    for (int c = 0; c < n; ++c) {
+      bool border_rows = false;  // factor() reads a column's border rows after its block rows
       for (Index e = Ap[c]; e < Ap[c + 1]; ++e) {
         const long r = static_cast<long>(Ai[e]);
-        if (r >= n && r < size()) continue;  // a border row
-        if (!in_staircase(r, c)) return false;
+        if (r >= n && r < size()) {
+          border_rows = true;
+          continue;
+        }
+        if (border_rows || !in_staircase(r, c)) return false;
         ++staircase;
       }
+    }
     for (Index e = Ap[n]; e < Ap[size()]; ++e)
       if (Ai[e] < 0 || Ai[e] >= size()) return false;
     const long dense = static_cast<long>(B) * (T + 2 * B * (nb_ - 1) + (B - T));
@@ -120,7 +125,11 @@ class AlmostBlockDiagonalLU {
     factored_ = false;
     const long n = B * nb_;
     for (int j = 0; j < nb_; ++j) clear_unowned(j);
-    if (m_) E_.setZero(), F_.setZero(), G_.setZero();
+    if (m_) {
+      E_.setZero();
+      F_.setZero();
+      G_.setZero();
+    }
     // Entry (r, c) of block column j lies in panel p = j - 1 (rows of interval j - 1) or j, at
     // row r - B p and column c - B p: offset 2B r + B (2T - 1) p + c in the panels' doubles (they
     // are consecutive row-major R x 2B matrices). The border rows come last in a column.
@@ -284,7 +293,7 @@ class AlmostBlockDiagonalLU {
   int nb_, m_;
   bool dense_ = false;
   bool factored_ = false;
-  std::vector<Panel> panels_;        // after factor(): U's block rows on top, the rest zero
+  std::vector<Panel> panels_;  // after factor(): U's block row on top, the carried rows below
   std::vector<Lower> lower_;
   std::vector<Pivots> pivots_;
   Eigen::MatrixXd E_, F_, W_;  // the border: E = A's border columns, F its rows, W = A^-1 E

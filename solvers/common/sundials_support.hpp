@@ -136,8 +136,6 @@ class JacobianPattern {
     J_.makeCompressed();
     RODLAB_THROW_UNLESS(J_.nonZeros() != 0, "{}: the Jacobian pattern is empty", owner_);
     std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
-    column_pointers_.assign(J_.outerIndexPtr(), J_.outerIndexPtr() + size() + 1);
-    row_indices_.assign(J_.innerIndexPtr(), J_.innerIndexPtr() + J_.nonZeros());
     outer_.assign(J_.outerIndexPtr(), J_.outerIndexPtr() + size() + 1);
     inner_.assign(J_.innerIndexPtr(), J_.innerIndexPtr() + J_.nonZeros());
   }
@@ -175,9 +173,8 @@ class JacobianPattern {
   }
 
  private:
-  /// Whether J_ still has the pattern: its index arrays compared with memcmp against copies of
-  /// Eigen's type (an element-wise loop against SUNDIALS' index type was 1-2 % of a kinsol
-  /// statics solve).
+  /// Whether J_ still has the pattern: its index arrays compared with memcmp (an element-wise
+  /// loop against copies of SUNDIALS' index type was 1-2 % of a kinsol statics solve).
   bool same_pattern() const {
     const auto nnz = static_cast<std::size_t>(J_.nonZeros());
     return J_.isCompressed() && nnz == inner_.size() && J_.rows() == size() &&
@@ -188,22 +185,20 @@ class JacobianPattern {
 
   /// J_ with the pattern's index arrays again (zero values), after a callback changed them.
   void restore_pattern() {
-    const auto nnz = static_cast<Eigen::Index>(row_indices_.size());
-    std::vector<int> outer(column_pointers_.begin(), column_pointers_.end());
-    std::vector<int> inner(row_indices_.begin(), row_indices_.end());
-    const std::vector<double> zeros(row_indices_.size(), 0.0);
-    J_ = Eigen::Map<const SparseMatrix>(size(), size(), nnz, outer.data(), inner.data(), zeros.data());
+    const auto nnz = static_cast<Eigen::Index>(inner_.size());
+    const std::vector<double> zeros(inner_.size(), 0.0);
+    J_ = Eigen::Map<const SparseMatrix>(size(), size(), nnz, outer_.data(), inner_.data(),
+                                        zeros.data());
   }
 
-  void copy_indices(SUNMatrix A) const {
-    std::copy(column_pointers_.begin(), column_pointers_.end(), SUNSparseMatrix_IndexPointers(A));
-    std::copy(row_indices_.begin(), row_indices_.end(), SUNSparseMatrix_IndexValues(A));
+  void copy_indices(SUNMatrix A) const {  // widened to SUNDIALS' index type
+    std::copy(outer_.begin(), outer_.end(), SUNSparseMatrix_IndexPointers(A));
+    std::copy(inner_.begin(), inner_.end(), SUNSparseMatrix_IndexValues(A));
   }
 
   std::string owner_;
   SparseMatrix J_;
-  std::vector<sunindextype> column_pointers_, row_indices_;
-  std::vector<int> outer_, inner_;  // the same, of Eigen's index type (same_pattern)
+  std::vector<int> outer_, inner_;  // the pattern's column pointers and row indices
 };
 
 }  // namespace rodlab::solvers::sundials
