@@ -207,6 +207,19 @@ BOOST_AUTO_TEST_CASE(refuses_what_it_cannot_solve) {
     BOOST_TEST(!lu.accept_pattern(wide.outerIndexPtr(), wide.innerIndexPtr()),
                "row " << row << ", column " << col);
   }
+  // A column whose border row comes before its block rows (factor() scatters the border rows
+  // last): refused; the same column in CSC order is accepted.
+  {
+    const Dense M = bordered(random_staircase(5, 3, 3, 2), 1, 3);
+    const Sparse P = bordered_pattern(M, 5, 3, 1);
+    std::vector<int> outer(P.outerIndexPtr(), P.outerIndexPtr() + P.cols() + 1);
+    std::vector<int> inner(P.innerIndexPtr(), P.innerIndexPtr() + P.nonZeros());
+    AlmostBlockDiagonalLU<5, 3> sorted(3, 1);
+    BOOST_TEST(sorted.accept_pattern(outer.data(), inner.data()));
+    std::swap(inner[outer[0]], inner[outer[1] - 1]);  // column 0: the border row first
+    AlmostBlockDiagonalLU<5, 3> unsorted(3, 1);
+    BOOST_TEST(!unsorted.accept_pattern(outer.data(), inner.data()));
+  }
   // Singular: a block column without non-zeros, and two equal rows.
   for (const bool equal_rows : {false, true}) {
     Sparse singular = S;
