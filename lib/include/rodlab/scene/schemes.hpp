@@ -57,7 +57,8 @@ inline constexpr std::array<SchemeInfo, kSchemeCount> kSchemeCatalogue{{
     {SchemeId::chebyshev, "chebyshev", Problem::statics, "spectral", true, false,
      "Chebyshev-Lobatto pseudospectral collocation, Newton with a dense Jacobian"},
     {SchemeId::kinsol, "kinsol", Problem::statics, ">=4", true, true,
-     "reference: Lie-group Hermite-Simpson (RKMK Lobatto IIIA) collocation, KINSOL + KLU"},
+     "reference: Lie-group Hermite-Simpson (RKMK Lobatto IIIA) collocation, KINSOL with an "
+     "almost block diagonal LU"},
     {SchemeId::variational, "variational", Problem::dynamics, "2 (t) / 2 (s)", false, false,
      "explicit discrete variational Lie-group integrator (thesis Algorithm 1), Stormer-Verlet "
      "start (first order in t as the thesis: solver.variational_step symplectic-euler)"},
