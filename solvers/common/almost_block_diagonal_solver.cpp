@@ -32,7 +32,8 @@ int border_of(SUNMatrix pattern) {
 
 }  // namespace
 
-SUNLinearSolver make_almost_block_diagonal_solver(SUNMatrix pattern, SUNContext ctx) {
+SUNLinearSolver make_almost_block_diagonal_solver(SUNMatrix pattern, SUNContext ctx,
+                                                  bool natural_order, bool keep_factors) {
   const sunindextype n = SUNSparseMatrix_Columns(pattern);
   if (SUNSparseMatrix_SparseType(pattern) != CSC_MAT || SUNSparseMatrix_Rows(pattern) != n)
     return nullptr;
@@ -41,11 +42,12 @@ SUNLinearSolver make_almost_block_diagonal_solver(SUNMatrix pattern, SUNContext 
   return make_fallback_solver<BlockLU>(ctx, [&] {
     auto c = std::make_unique<FallbackContent<BlockLU>>(
         static_cast<int>((n - border) / kAbdBlock), border);
+    c->keep_factors = keep_factors;
     if (!c->lu.accept_pattern(SUNSparseMatrix_IndexPointers(pattern),
                               SUNSparseMatrix_IndexValues(pattern)))
       throw std::invalid_argument("not almost block diagonal");
     if (border) {  // the block LU of a border can be unstable where the whole matrix is not
-      c->klu = make_kept_klu_solver(n, ctx, true, false);
+      c->klu = make_kept_klu_solver(n, ctx, natural_order, keep_factors);
       if (!c->klu) throw std::bad_alloc();
     }
     return c;

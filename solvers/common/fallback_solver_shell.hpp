@@ -49,6 +49,12 @@ struct FallbackContent {
   }
 };
 
+/// The content of a solver made by make_fallback_solver<LU>.
+template <class LU>
+FallbackContent<LU>& fallback_content(SUNLinearSolver S) {
+  return *static_cast<FallbackContent<LU>*>(S->content);
+}
+
 /// A new solver owned by the caller (SUNLinSolFree releases it) with the content `make()`
 /// returns; NULL when make throws (a pattern not of the LU's form) or on allocation failure.
 template <class LU, class Make>
@@ -65,13 +71,13 @@ SUNLinearSolver make_fallback_solver(SUNContext ctx, Make&& make) {
   }
   DirectSolverOps ops;
   ops.initialize = [](SUNLinearSolver s) {
-    Content& c = *static_cast<Content*>(s->content);
+    Content& c = fallback_content<LU>(s);
     if (!c.keep_factors) c.factored = false;
     if (c.klu) SUNLinSolInitialize(c.klu);
     return c.last_flag = SUNLS_SUCCESS;
   };
   ops.setup = [](SUNLinearSolver s, SUNMatrix A) {
-    Content& c = *static_cast<Content*>(s->content);
+    Content& c = fallback_content<LU>(s);
     if (SUNSparseMatrix_SparseType(A) != CSC_MAT || SUNSparseMatrix_Columns(A) != c.lu.size())
       return c.last_flag = SUNLS_ILL_INPUT;
     // Every setup factorises: its users call it for new values only (a kept Jacobian's factors
@@ -84,7 +90,7 @@ SUNLinearSolver make_fallback_solver(SUNContext ctx, Make&& make) {
     return c.last_flag = flag;
   };
   ops.solve = [](SUNLinearSolver s, SUNMatrix A, N_Vector x, N_Vector b, double tol) {
-    Content& c = *static_cast<Content*>(s->content);
+    Content& c = fallback_content<LU>(s);
     if (!c.factored) return c.last_flag = SUNLS_MEM_NULL;
     if (c.use_klu) return c.last_flag = SUNLinSolSolve(c.klu, A, x, b, tol);
     N_VScale(1.0, b, x);
@@ -93,12 +99,6 @@ SUNLinearSolver make_fallback_solver(SUNContext ctx, Make&& make) {
   };
   install_direct_solver(S, c.release(), ops);
   return S;
-}
-
-/// The content of a solver made by make_fallback_solver<LU>.
-template <class LU>
-FallbackContent<LU>& fallback_content(SUNLinearSolver S) {
-  return *static_cast<FallbackContent<LU>*>(S->content);
 }
 
 }  // namespace rodlab::solvers::sundials

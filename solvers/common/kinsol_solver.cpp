@@ -101,26 +101,22 @@ struct KinsolSolver::Impl {
     A = pattern.make_matrix(ctx);
     const bool natural = order == KluOrder::natural;
     const bool kept = reuse != KluReuse::none;
-    if (linear == NewtonLinearSolver::condensed_rod_blocks) {
+    const bool keep_factors = reuse == KluReuse::factors;
+    if (linear != NewtonLinearSolver::klu) {  // a structured LU with a KLU fallback
+      const bool condensed = linear == NewtonLinearSolver::condensed_rod_blocks;
       linear_solver.reset(
-          sundials::make_condensed_block_solver(A.get(), ctx, reuse == KluReuse::factors));
+          condensed ? sundials::make_condensed_block_solver(A.get(), ctx, keep_factors)
+                    : sundials::make_almost_block_diagonal_solver(A.get(), ctx, natural,
+                                                                  keep_factors));
       if (!linear_solver)
-        throw std::invalid_argument(
-            "KinsolSolver: condensed_rod_blocks needs a pattern of its form "
-            "(newton_linear_solver.hpp)");
-      return;
-    }
-    if (linear == NewtonLinearSolver::almost_block_diagonal) {
-      linear_solver.reset(sundials::make_almost_block_diagonal_solver(A.get(), ctx));
-      if (!linear_solver)
-        throw std::invalid_argument(
-            "KinsolSolver: almost_block_diagonal needs a pattern of its form "
-            "(newton_linear_solver.hpp)");
+        throw std::invalid_argument(rodlab::format(
+            "KinsolSolver: {} needs a pattern of its form (newton_linear_solver.hpp)",
+            condensed ? "condensed_rod_blocks" : "almost_block_diagonal"));
       return;
     }
     linear_solver.reset(
         kept ? sundials::check_created(
-                   sundials::make_kept_klu_solver(n, ctx, natural, reuse == KluReuse::factors),
+                   sundials::make_kept_klu_solver(n, ctx, natural, keep_factors),
                    "KINSOL", "make_kept_klu_solver")
              : sundials::check_created(SUNLinSol_KLU(u.get(), A.get(), ctx), "KINSOL",
                                        "SUNLinSol_KLU"));

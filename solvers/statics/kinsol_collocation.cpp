@@ -606,7 +606,7 @@ class Driver {
     kinsol_.scsteptol = options.step_tol;
     kinsol_.max_iterations = options.max_iterations;
     kinsol_.line_search = true;
-    // A Jacobian (finite differences and a KLU factorisation) at every third iteration: the
+    // A Jacobian (finite differences and a factorisation) at every third iteration: the
     // gravity cantilever at N = 100 takes 5 iterations and 2 Jacobians, 2.2 ms, against 4 and 4,
     // 3.6 ms with one per iteration (6 and 7 iterations, 2.24 and 2.42 ms, with one every 4th
     // or 5th; bench_statics). The converged residual is held to the same tolerance.
@@ -763,7 +763,7 @@ class Driver {
 
   Collocation C_;
   KinsolCollocationOptions options_;
-  ThreadSolver solver_;  // block-banded in node order: KLU's natural column order
+  ThreadSolver solver_;  // block-banded in node order (the KLU fallback's natural order)
   KinsolOptions kinsol_;
   KinsolCollocationReport report_;
 };

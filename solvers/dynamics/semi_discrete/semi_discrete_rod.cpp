@@ -107,12 +107,8 @@ SemiDiscreteRod::SemiDiscreteRod(const DynamicProblem& problem, int nodes, const
   omega1_ = 2.0 * std::numbers::pi * c.first_bending_frequency_hz;
   const double EI = std::min(model.K_diag()[0], model.K_diag()[1]);
   problem.model().require_spans_on_grid(n_, "the semi-discrete rod");
-  nu_star_.resize(n_ - 1);
   xi_star_.resize(n_ - 1);
-  for (int j = 0; j + 1 < n_; ++j) {
-    xi_star_[j] = model.xi_star((j + 0.5) * ds_);
-    nu_star_[j] = xi_star_[j].tail<3>();
-  }
+  for (int j = 0; j + 1 < n_; ++j) xi_star_[j] = model.segment_xi_star(j, n_);
   force_scale_ = EI / (L * L);
   const double e_bend = 0.5 * EI * std::pow(0.5 * std::numbers::pi / L, 2) * L;
   scale_.resize(dim_);
@@ -148,7 +144,7 @@ SemiDiscreteRod::Vector SemiDiscreteRod::rest_state(std::span<const SE3> g0) con
     // than its arc by O((kappa ds)^2); each segment keeps its rotation and gets nu = nu*.
     for (int j = 0; j + 1 < n_; ++j) {
       Vector6 x = (g0[j].inverse_times(g0[j + 1])).log();
-      x.tail<3>() = ds_ * nu_star_[j];
+      x.tail<3>() = ds_ * xi_star_[j].tail<3>();
       g[j + 1] = g[j] * SE3::exp(x);
     }
   }
@@ -254,7 +250,7 @@ void SemiDiscreteRod::constraint(const double* y, double* c) const {
   unpack_nodes(y);
   for (int j = 0; j + 1 < n_; ++j) {
     const Vector6 x = (g_[j].inverse_times(g_[j + 1])).log();
-    Eigen::Map<Vector3>(c + 3 * j) = x.tail<3>() / ds_ - nu_star_[j];
+    Eigen::Map<Vector3>(c + 3 * j) = x.tail<3>() / ds_ - xi_star_[j].tail<3>();
   }
 }
 

@@ -18,7 +18,8 @@ namespace rodlab::solvers {
 /// unknowns): partial pivoting panel by panel, the factors of dense partial pivoting at a
 /// fraction of KLU's cost, and the border by block LU on them (KLU factorises a bordered matrix
 /// whose pivots look ill-conditioned; almost_block_diagonal_lu.hpp, docs/statics.md "Cost").
-/// KluReuse and KluOrder do not apply to it: it factorises at every setup.
+/// It factorises at every setup; KluReuse and KluOrder are those of its KLU fallback, and
+/// KluReuse::factors keeps its own factors across KINSol calls too.
 enum class NewtonLinearSolver { klu, condensed_rod_blocks, almost_block_diagonal };
 
 }  // namespace rodlab::solvers

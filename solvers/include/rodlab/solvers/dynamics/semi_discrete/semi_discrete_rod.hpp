@@ -350,7 +350,7 @@ class SemiDiscreteRod {
   Vector6 model_strain(const Vector6& xi, int j) const {
     if (!kirchhoff_) return xi;
     Vector6 x = xi;
-    x.tail<3>() = nu_star_[j];
+    x.tail<3>() = xi_star_[j].tail<3>();
     return x;
   }
 
@@ -360,8 +360,7 @@ class SemiDiscreteRod {
   bool kirchhoff_ = false;
   bool clamped_ = false;  ///< the tip node is held by a clamp (not an unknown)
   int last_ = 0;          ///< the last unknown node: N - 1, or N - 2 with a clamped tip
-  std::vector<Vector3> nu_star_;  ///< per segment: nu* of the span that holds it
-  std::vector<Vector6> xi_star_;  ///< per segment: xi* at its midpoint
+  std::vector<Vector6> xi_star_;  ///< per segment: RodModel::segment_xi_star
   bool packed_ = true;            ///< segment_pair where the scene allows it
   int dim_ = 0, iD_ = 0, iW_ = 0, iX_ = 0, m_ = 0;
   Vector6 M_, V_;
