@@ -75,9 +75,9 @@ class Variational final : public Stepper {
     started_ = options.step == VariationalStep::symplectic_euler || kActuated;
     // Verlet's damping at the kick times (correct_damping): only scenes with viscosity or drag
     // pay for it, and not those with muscles or length control (first order there).
-    const bool viscous = (problem.model().V_diag().array() != 0.0).any();
+    viscous_ = (problem.model().V_diag().array() != 0.0).any();
     trapezoidal_damping_ = options.step == VariationalStep::verlet && !kActuated &&
-                           (viscous || problem.has_drag());
+                           (viscous_ || problem.has_drag());
     if (trapezoidal_damping_) {
       x_.assign(n_ - 1, Vector6::Zero());
       ef_.assign(n_ - 1, small::EF{});
@@ -100,10 +100,13 @@ class Variational final : public Stepper {
     // cables entering from outside.
     packed_ = !kActuated && options.packed && entries_.empty() && !problem.has_actuators();
     if (packed_) {
-      E_.assign(n_, SE3::identity());
+      const packed::Pose identity = packed::load(SE3::identity(), SE3::identity());
+      E_.assign(n_ / 2 + 1, identity);  // E_[0]: E^0 (the base) in both lanes
       lambda_.assign(n_, Vector6::Zero());
-      xi_star_.resize(n_ - 1);
-      for (int j = 0; j + 1 < n_; ++j) xi_star_[j] = problem.model().segment_xi_star(j, n_);
+      const auto& model = problem.model();
+      for (int j = 0; j + 1 < n_; j += 2)  // in the segment pass's pairs
+        xi_star_.push_back(packed::load(model.segment_xi_star(j, n_),
+                                        model.segment_xi_star(std::min(j + 1, n_ - 2), n_)));
     }
   }
 
@@ -370,38 +373,38 @@ class Variational final : public Stepper {
     const int tip = n_ - 1;
     if (const int j = packed_nodes(t1, dt, applied, drag, dissipated, work); j >= 0) return j;
     lambda_[tip] = P_.tip_load(g_[tip].rotation(), t1);
-    return node(tip, t1, dt, dt, E_[tip], lambda_[tip], lambda_[tip - 1], applied, drag,
+    return node(tip, t1, dt, dt, exponential(tip), lambda_[tip], lambda_[tip - 1], applied, drag,
                 dissipated, work, nullptr)
                ? -1
                : tip;
   }
 
-  /// E^j = exp(dt eta_j), j = 1..N-1 (E^0: the base does not move). Pairs (j, k); an odd count
-  /// repeats the last node in both lanes.
+  /// E^j = exp(dt eta_j), j = 1..N-1, packed in pairs as the node pass takes them: E_[p] holds
+  /// (E^(2p-1), E^(2p)), E_[0] E^0 (the base does not move) in both lanes; an odd count repeats
+  /// the last node in both lanes. (Kept packed: stored lane by lane and loaded again they cost
+  /// the step 1-2 %, bench_dynamics, session 28.)
   void packed_exponentials(double dt) {
     constexpr double kSmall2 = small::kSmallAngle * small::kSmallAngle;
-    for (int j = 1; j < n_; j += 2) {
+    for (int j = 1, p = 1; j < n_; j += 2, ++p) {
       const int k = std::min(j + 1, n_ - 1);
       const packed::V6 x = dt * packed::load(eta_[j], eta_[k]);
       const packed::D2 t2 = packed::dot(x.w, x.w);
-      if (packed::any(!(t2 < kSmall2))) {
-        E_[j] = small::exp(dt * eta_[j]);
-        E_[k] = small::exp(dt * eta_[k]);
-        continue;
-      }
-      const packed::Pose E = packed::exp(x, t2);
-      E_[j] = packed::lane(E, 0);
-      E_[k] = packed::lane(E, 1);
+      E_[p] = packed::any(!(t2 < kSmall2))
+                  ? packed::load(small::exp(dt * eta_[j]), small::exp(dt * eta_[k]))
+                  : packed::exp(x, t2);
     }
   }
+
+  /// E^j from its pair.
+  SE3 exponential(int j) const { return packed::lane(E_[(j + 1) / 2], 1 - j % 2); }
 
   /// Segments j and k (a pair) moved by the step's E: G = E_j^-1 G_j E_(j+1) (3.38) and its
   /// twist ds xi = log G with the coefficients e, f of its angle (the scalar log where a lane is
   /// above the series' bound).
   packed::V6 packed_segment_twist(int j, int k, packed::Pose& G, packed::D2& e, packed::D2& f) {
-    G = packed::compose(
-        packed::inverse_compose(packed::load(E_[j], E_[k]), packed::load(G_[j], G_[k])),
-        packed::load(E_[j + 1], E_[k + 1]));
+    const int p = j / 2;  // E^(j+1), E^(k+1) are the pair E_[p + 1]; E^j, E^k one node before
+    G = packed::inverse_compose(packed::shifted(E_[p], E_[p + 1], k != j),
+                                packed::load(G_[j], G_[k]), E_[p + 1]);
     bool small_angles;
     const packed::V6 x = packed::log(G, e, f, small_angles);
     if (small_angles) return x;
@@ -434,7 +437,9 @@ class Variational final : public Stepper {
   }
 
   /// Segments j = 0..N-2: G_j = E_j^-1 G_j E_(j+1) (3.38), xi_j, the stress and its wrench
-  /// lambda_j = dexp^-T_(ds xi) sigma (3.40), the viscous dissipation.
+  /// lambda_j = dexp^-T_(ds xi) sigma (3.40), the viscous dissipation. The strain rates only
+  /// where there is viscosity (a zero viscous stress added nothing: the result is the same bit
+  /// for bit; the undamped step 2-3 % faster, bench_dynamics, session 28).
   void packed_segments(double dt, double& dissipated) {
     const double* K = P_.model().K_diag().data();
     const double* V = P_.model().V_diag().data();
@@ -447,13 +452,15 @@ class Variational final : public Stepper {
       packed::D2 e, f;
       const packed::V6 x = packed_segment_twist(j, k, G, e, f);  // ds xi
       const packed::V6 xi = inv_ds * x;
-      const packed::V6 xi_dot = inv_dt * (xi - packed::load(xi_[j], xi_[k]));
-      packed::V6 sigma = packed::diag(K, xi - packed::load(xi_star_[j], xi_star_[k])) +
-                         packed::diag(V, xi_dot);  // (3.10)
+      packed::V6 sigma = packed::diag(K, xi - xi_star_[j / 2]);  // (3.10)
+      packed::V6 xi_dot{};  // (Verlet's damping corrector reads it only times V)
+      if (viscous_) {
+        xi_dot = inv_dt * (xi - packed::load(xi_[j], xi_[k]));
+        sigma = sigma + packed::diag(V, xi_dot);
+        dissipation += packed::counted(packed::dot(xi_dot, packed::diag(V, xi_dot)), k != j);
+      }
       if (kirchhoff_) sigma.v = {zero, zero, zero};  // kirchhoff_stress: nu = nu* holds
       const packed::V6 lambda = packed::dexp_inv_transpose_apply(x, sigma, e, f);
-      const packed::D2 power = packed::dot(xi_dot, packed::diag(V, xi_dot));
-      dissipation += packed::counted(power, k != j);
       for (int l = 0; l < (k != j ? 2 : 1); ++l) {
         const int s = l == 0 ? j : k;
         G_[s] = packed::lane(G, l);
@@ -493,8 +500,9 @@ class Variational final : public Stepper {
       kinetic += packed::counted(packed::dot(eta_old, packed::diag(M, eta_old)), k != j);
       const packed::V6 force = packed::load(lambda_[j], lambda_[k]) - outer + ds_ * bar;
       const packed::V6 mu_old = packed::load(mu_[j], mu_[k]);
+      const packed::Pose& E = E_[(j + 1) / 2];  // E^j, E^k (k = j: E^j in both lanes)
       const packed::V6 mu =
-          packed::coAd_apply(packed::load(E_[j], E_[k]), mu_old) + (dt / ds_) * force;
+          packed::coAd_apply(k != j ? E : packed::lane_twice(E, 0), mu_old) + (dt / ds_) * force;
       if (trapezoidal_damping_) eta_old_[j] = eta_[j], eta_old_[k] = eta_[k];
       if (const int s = packed_velocities(j, k, dt, mu, mu_old); s >= 0) return s;
     }
@@ -713,13 +721,15 @@ class Variational final : public Stepper {
   // Verlet with viscosity or drag (correct_damping): per segment ds xi, its log coefficients and
   // the rate over the step; per node the velocity over the step.
   bool trapezoidal_damping_ = false;
+  bool viscous_ = false;  ///< the rod has viscosity
   std::vector<Vector6> x_, rate_, eta_old_;
   std::vector<small::EF> ef_;
   // The packed step (packed_pass): whether it runs, and per step E^j, the segments' stresses
   // lambda_j (the tip load last) and each segment's rest strain.
   bool packed_ = false;
-  std::vector<SE3> E_;
-  std::vector<Vector6> lambda_, xi_star_;
+  std::vector<packed::Pose> E_;  ///< packed_exponentials' pairs
+  std::vector<Vector6> lambda_;
+  std::vector<packed::V6> xi_star_;  ///< in pairs of segments (2p, 2p + 1)
 };
 
 }  // namespace
