@@ -235,7 +235,8 @@ class Variational final : public Stepper {
       const auto& o = dynamic_cast<const Variational&>(other);
       RODLAB_THROW_UNLESS(&o.P_ == &P_ && o.n_ == n_,
                           "variational: assign_state from another problem or grid");
-      g_ = o.g_, G_ = o.G_;
+      g_ = o.poses(), G_ = o.G_;
+      positions_stale_ = false;
       xi_ = o.xi_, eta_ = o.eta_, mu_ = o.mu_;
       ledger_ = o.ledger_;
       kinetic_old_ = o.kinetic_old_;
@@ -255,6 +256,7 @@ class Variational final : public Stepper {
       G_[j] = SE3::exp(ds_ * xi_[j]);
       g_[j + 1] = g_[j] * G_[j];
     }
+    positions_stale_ = false;
     for (int j = 1; j < n_; ++j) {
       const Vector6 M_eta = j == n_ - 1 && tip_cell_ ? Vector6(tip_cell_->M * eta_[j])
                                                      : Vector6(legendre_.M.cwiseProduct(eta_[j]));
@@ -268,7 +270,7 @@ class Variational final : public Stepper {
     // their mean is the kinetic energy at the current time, to O(dt^2).
     e.kinetic = 0.5 * (kinetic_old_ + kinetic_energy(P_.model(), eta_, ds_));
     e.strain = strain_energy_segments(P_.model(), xi_, ds_);
-    e.gravity = gravity_energy(P_, g_, ds_);
+    e.gravity = gravity_energy(P_, poses(), ds_);
     if (tip_cell_) {  // the half cell's rigid-body terms (corrected_grid.hpp)
       // its share of the mean above: 1/2 x 1/2 eta^T (M_tip - M) eta x the cell ds / 2
       const Vector6& eta = eta_.back();
@@ -280,7 +282,7 @@ class Variational final : public Stepper {
       if (act_->muscles()) {
         e.kinetic = 0.5 * (kinetic_old_ + kinetic_energy(act_->inertias(), eta_, ds_));
         e.strain += embedded_strain_energy_segments(P_, xi_, ds_);
-        e.gravity += embedded_gravity_energy(P_, g_, ds_);
+        e.gravity += embedded_gravity_energy(P_, poses(), ds_);
       }
     }
     return e;
@@ -291,12 +293,12 @@ class Variational final : public Stepper {
     return {};
   }
 
-  Vector3 tip_position() const override { return g_.back().translation(); }
+  Vector3 tip_position() const override { return poses().back().translation(); }
 
   double max_det_deviation() const override { return dynamics::max_det_deviation(g_); }
 
   std::vector<result::CenterlineSample> centerline() const override {
-    return staggered_centerline(g_, xi_, ds_);
+    return staggered_centerline(poses(), xi_, ds_);
   }
 
   std::vector<Vector6> velocities() const override { return eta_; }
@@ -486,10 +488,11 @@ class Variational final : public Stepper {
     packed::D2 kinetic = zero;
     for (int j = 1; j + 1 < n_; j += 2) {
       const int k = std::min(j + 1, n_ - 2);
-      // the poses g_(j+1) = g_j G_j (3.39): a serial chain, here where the independent work of
-      // the pairs before hides its latency (as a pass of its own it was 9 % of the step)
-      g_[j] = g_[j - 1] * G_[j - 1];
-      if (k != j) g_[k] = g_[j] * G_[j];
+      // the rotations of the poses g_(j+1) = g_j G_j (3.39): a serial chain, here where the
+      // independent work of the pairs before hides its latency (as a pass of its own it was 9 %
+      // of the step); the positions follow when read (poses())
+      g_[j] = SE3(g_[j - 1].rotation() * G_[j - 1].rotation(), g_[j].translation());
+      if (k != j) g_[k] = SE3(g_[j].rotation() * G_[j].rotation(), g_[k].translation());
       const packed::V6 eta_old = packed::load(eta_[j], eta_[k]);
       const packed::V6 outer = packed::coAd_apply(packed::load(G_[j - 1], G_[k - 1]),
                                                   packed::load(lambda_[j - 1], lambda_[k - 1]));
@@ -507,7 +510,8 @@ class Variational final : public Stepper {
       if (const int s = packed_velocities(j, k, dt, mu, mu_old); s >= 0) return s;
     }
     kinetic_old_ += 0.5 * ds_ * (kinetic[0] + kinetic[1]);
-    g_[n_ - 1] = g_[n_ - 2] * G_[n_ - 2];
+    g_[n_ - 1] = SE3(g_[n_ - 2].rotation() * G_[n_ - 2].rotation(), g_[n_ - 1].translation());
+    positions_stale_ = true;
     return -1;
   }
 
@@ -698,12 +702,28 @@ class Variational final : public Stepper {
         t1, dt));
   }
 
+  /// The poses, their positions formed here after a packed step, which keeps the rotations
+  /// alone (the dynamics needs no position): p_(j+1) = p_j + R_j p(G_j), SE3::operator*'s
+  /// operations, so the same poses bit for bit as forming them in the step.
+  const std::vector<SE3>& poses() const {
+    if (positions_stale_) {
+      for (int j = 0; j + 1 < n_; ++j)
+        g_[j + 1] = SE3(g_[j + 1].rotation(),
+                        g_[j].translation() + g_[j].rotation() * G_[j].translation());
+      positions_stale_ = false;
+    }
+    return g_;
+  }
+
   const DynamicProblem& P_;
   VariationalOptions opt_;
   int n_;
   double ds_;
   DiscreteLegendre legendre_;  ///< (3.42)
-  std::vector<SE3> g_, G_;
+  // g_'s positions are formed lazily by poses() (a const reader) after a packed step
+  mutable std::vector<SE3> g_;
+  mutable bool positions_stale_ = false;
+  std::vector<SE3> G_;
   std::vector<Vector6> xi_, eta_, mu_;
   std::vector<DynamicProblem::EntryNode> entries_;
   StaggeredTangent tangent_;
