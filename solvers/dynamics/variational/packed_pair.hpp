@@ -57,11 +57,15 @@ inline V6 operator*(double s, const V6& a) { return {s * a.w, s * a.v}; }
 inline D2 dot(const V6& a, const V6& b) { return dot(a.w, b.w) + dot(a.v, b.v); }
 /// Componentwise product with a constant diagonal of six (a Vector6's data).
 inline V6 diag(const double* d, const V6& a) { return {diag(d, a.w), diag(d + 3, a.v)}; }
+/// op on each component pair of a and b.
+template <class Op>
+inline V6 lanewise(const V6& a, const V6& b, Op op) {
+  return {{op(a.w.x, b.w.x), op(a.w.y, b.w.y), op(a.w.z, b.w.z)},
+          {op(a.v.x, b.v.x), op(a.v.y, b.v.y), op(a.v.z, b.v.z)}};
+}
 /// Lanes of `yes` where m is set, of `no` elsewhere.
 inline V6 select(Mask m, const V6& yes, const V6& no) {
-  auto s = [m](D2 a, D2 b) { return m ? a : b; };
-  return {{s(yes.w.x, no.w.x), s(yes.w.y, no.w.y), s(yes.w.z, no.w.z)},
-          {s(yes.v.x, no.v.x), s(yes.v.y, no.v.y), s(yes.v.z, no.v.z)}};
+  return lanewise(yes, no, [m](D2 a, D2 b) { return m ? a : b; });
 }
 
 inline V6 load(const lie::Vector6& a, const lie::Vector6& b) {
@@ -100,12 +104,7 @@ inline lie::SE3 lane(const Pose& g, int l) {
 // pair p holds 2p and 2p + 1 (or, for the exponentials, 2p - 1 and 2p). A pass that takes the
 // pairs one node later reads them shifted.
 
-/// op on each lane pair of a and b (componentwise).
-template <class Op>
-inline V6 lanewise(const V6& a, const V6& b, Op op) {
-  return {{op(a.w.x, b.w.x), op(a.w.y, b.w.y), op(a.w.z, b.w.z)},
-          {op(a.v.x, b.v.x), op(a.v.y, b.v.y), op(a.v.z, b.v.z)}};
-}
+/// op on each component pair of a and b.
 template <class Op>
 inline Pose lanewise(const Pose& a, const Pose& b, Op op) {
   return {{op(a.q.w, b.q.w), op(a.q.x, b.q.x), op(a.q.y, b.q.y), op(a.q.z, b.q.z)},
