@@ -491,8 +491,8 @@ class Variational final : public Stepper {
       // the rotations of the poses g_(j+1) = g_j G_j (3.39): a serial chain, here where the
       // independent work of the pairs before hides its latency (as a pass of its own it was 9 %
       // of the step); the positions follow when read (poses())
-      g_[j] = SE3(g_[j - 1].rotation() * G_[j - 1].rotation(), g_[j].translation());
-      if (k != j) g_[k] = SE3(g_[j].rotation() * G_[j].rotation(), g_[k].translation());
+      chain_rotation(j - 1);
+      if (k != j) chain_rotation(j);
       const packed::V6 eta_old = packed::load(eta_[j], eta_[k]);
       const packed::V6 outer = packed::coAd_apply(packed::load(G_[j - 1], G_[k - 1]),
                                                   packed::load(lambda_[j - 1], lambda_[k - 1]));
@@ -510,7 +510,7 @@ class Variational final : public Stepper {
       if (const int s = packed_velocities(j, k, dt, mu, mu_old); s >= 0) return s;
     }
     kinetic_old_ += 0.5 * ds_ * (kinetic[0] + kinetic[1]);
-    g_[n_ - 1] = SE3(g_[n_ - 2].rotation() * G_[n_ - 2].rotation(), g_[n_ - 1].translation());
+    chain_rotation(n_ - 2);
     positions_stale_ = true;
     return -1;
   }
@@ -700,6 +700,11 @@ class Variational final : public Stepper {
     return StepStatus::failed(rodlab::format(
         "unstable: variational: Newton on (3.42) diverged at node {} (t = {:g} s, dt = {:g} s)", j,
         t1, dt));
+  }
+
+  /// g_(j+1)'s rotation from g_j's and segment j's (3.39); its position is left for poses().
+  void chain_rotation(int j) {
+    g_[j + 1] = SE3(g_[j].rotation() * G_[j].rotation(), g_[j + 1].translation());
   }
 
   /// The poses, their positions formed here after a packed step, which keeps the rotations
