@@ -12,6 +12,7 @@
 #include "rodlab/check.hpp"
 
 #include "almost_block_diagonal_solver.hpp"
+#include "broyden_steps.hpp"
 #include "condensed_block_solver.hpp"
 #include "kept_klu_solver.hpp"
 #include "sundials_support.hpp"
@@ -96,6 +97,8 @@ struct KinsolSolver::Impl {
     context = sundials::make_context("KINSOL");
     SUNContext ctx = context.get();
     u = sundials::make_vector(n, ctx, "KINSOL");
+    rhs = sundials::make_vector(n, ctx, "KINSOL");
+    step = sundials::make_vector(n, ctx, "KINSOL");
     u_scale = sundials::make_vector(n, ctx, "KINSOL");
     f_scale = sundials::make_vector(n, ctx, "KINSOL");
     A = pattern.make_matrix(ctx);
@@ -127,12 +130,15 @@ struct KinsolSolver::Impl {
   // Declaration order is destruction order reversed: the context outlives everything.
   sundials::ContextPtr context;
   sundials::VectorPtr u, u_scale, f_scale;
+  sundials::VectorPtr rhs, step;  ///< solve_broyden's linear systems
   sundials::MatrixPtr A;
   sundials::LinearSolverPtr linear_solver;
   sundials::JacobianPattern pattern;  // the callback writes its values
   KluOrder order = KluOrder::fill_reducing;
   KluReuse reuse = KluReuse::none;
   NewtonLinearSolver linear = NewtonLinearSolver::klu;
+  Vector F;               ///< solve_broyden's residual
+  BroydenSteps broyden;   ///< solve_broyden's secant steps
 
   /// What the C callbacks need during one solve.
   struct Call {
@@ -214,17 +220,22 @@ KinsolSolver& KinsolSolver::operator=(KinsolSolver&&) noexcept = default;
 
 int KinsolSolver::size() const { return impl_->pattern.size(); }
 
-KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacobian& jacobian,
-                                const KinsolOptions& options) {
-  Impl& d = *impl_;
-  const auto n = static_cast<Eigen::Index>(d.pattern.size());
-  auto expect_size = [&](const Vector& v, const char* what) {
+namespace {
+
+/// Deuflhard's bound on the contraction of QNERR's steps (broyden_steps.hpp).
+constexpr double kBroydenMaxContraction = 0.5;
+
+/// The arguments' checks of solve() and solve_broyden(); sets the scalings.
+void check_arguments(int size, const Eigen::VectorXd& x, bool callbacks,
+                     const KinsolOptions& options, N_Vector u_scale, N_Vector f_scale) {
+  const auto n = static_cast<Eigen::Index>(size);
+  auto expect_size = [&](const Eigen::VectorXd& v, const char* what) {
     RODLAB_THROW_UNLESS(v.size() == n, "KinsolSolver::solve: {}: expected size {}, got {}", what,
                         n, v.size());
   };
   expect_size(x, "x");
   if (!x.allFinite()) throw std::invalid_argument("KinsolSolver::solve: the initial guess is not finite");
-  if (!residual || !jacobian) throw std::invalid_argument("KinsolSolver::solve: empty residual or Jacobian");
+  if (!callbacks) throw std::invalid_argument("KinsolSolver::solve: empty residual or Jacobian");
   RODLAB_THROW_UNLESS(options.fnormtol > 0.0 && options.scsteptol > 0.0,
                       "KinsolSolver::solve: fnormtol and scsteptol must be > 0, got {:g}, {:g}",
                       options.fnormtol, options.scsteptol);
@@ -236,7 +247,7 @@ KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacob
                       "KinsolSolver::solve: print_level must be 0..3, got {}", options.print_level);
   if (!(options.max_newton_step >= 0.0))
     throw std::invalid_argument("KinsolSolver::solve: max_newton_step must be >= 0");
-  auto set_scale = [&](const Vector& scale, N_Vector target, const char* what) {
+  auto set_scale = [&](const Eigen::VectorXd& scale, N_Vector target, const char* what) {
     auto out = view(target);
     if (scale.size() == 0) {
       out.setOnes();
@@ -247,8 +258,17 @@ KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacob
                         "KinsolSolver::solve: {} must be finite and > 0", what);
     out = scale;
   };
-  set_scale(options.u_scale, d.u_scale.get(), "u_scale");
-  set_scale(options.f_scale, d.f_scale.get(), "f_scale");
+  set_scale(options.u_scale, u_scale, "u_scale");
+  set_scale(options.f_scale, f_scale, "f_scale");
+}
+
+}  // namespace
+
+KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacobian& jacobian,
+                                const KinsolOptions& options) {
+  Impl& d = *impl_;
+  check_arguments(d.pattern.size(), x, residual && jacobian, options, d.u_scale.get(),
+                  d.f_scale.get());
   view(d.u.get()) = x;
 
   Impl::Call call{&d, &residual, &jacobian, nullptr, {}};
@@ -317,6 +337,83 @@ KinsolStats KinsolSolver::solve(Vector& x, const Residual& residual, const Jacob
   stats.fnorm = fnorm;
   x = view(d.u.get());
   return stats;
+}
+
+KinsolStats KinsolSolver::solve_broyden(Vector& x, const Residual& residual,
+                                        const Jacobian& jacobian, const KinsolOptions& options) {
+  Impl& d = *impl_;
+  check_arguments(d.pattern.size(), x, residual && jacobian, options, d.u_scale.get(),
+                  d.f_scale.get());
+  RODLAB_THROW_UNLESS(options.broyden_jacobians >= 1,
+                      "KinsolSolver::solve_broyden: broyden_jacobians must be >= 1, got {}",
+                      options.broyden_jacobians);
+  if (options.reuse_factorisation && d.reuse != KluReuse::factors)
+    throw std::invalid_argument(
+        "KinsolSolver::solve_broyden: reuse_factorisation needs a solver constructed with "
+        "KluReuse::factors");
+  const auto u_scale = view(d.u_scale.get());
+  const auto f_scale = view(d.f_scale.get());
+  d.F.resize(x.size());
+  d.broyden.reset(u_scale, options.max_iterations + 1);
+  auto dx = view(d.step.get());
+  KinsolStats stats;
+  auto finish = [&](bool converged, const char* how) {
+    stats.converged = converged;
+    stats.flag_name = how;
+    stats.fnorm = f_scale.cwiseProduct(d.F).norm();
+    return stats;
+  };
+  // F(x) into d.F; false where it is not finite (or cannot be evaluated).
+  auto evaluate = [&] {
+    ++stats.function_evaluations;
+    try {
+      residual(x, d.F);
+    } catch (const KinsolRecoverableError& e) {
+      stats.message = e.what();
+      return false;
+    }
+    return d.F.allFinite();
+  };
+  auto fnorm_inf = [&] { return f_scale.cwiseProduct(d.F).cwiseAbs().maxCoeff(); };
+  // A Jacobian at x, factorised (the Jacobian callback's contract, as in KINSOL's set-up).
+  auto set_up = [&] {
+    ++stats.jacobian_evaluations;
+    const bool finite =
+        d.pattern.fill(d.A.get(), [&](SparseMatrix& J) { jacobian(x, d.F, J); });
+    if (!finite) stats.message = "the Jacobian has non-finite entries";
+    return finite && SUNLinSolSetup(d.linear_solver.get(), d.A.get()) == SUNLS_SUCCESS;
+  };
+  // dx = -J0^-1 F.
+  auto simplified_step = [&] {
+    view(d.rhs.get()) = -d.F;
+    return SUNLinSolSolve(d.linear_solver.get(), d.A.get(), d.step.get(), d.rhs.get(), 0.0) ==
+           SUNLS_SUCCESS;
+  };
+
+  if (!evaluate()) return finish(false, "broyden: the residual is not finite");
+  if (fnorm_inf() <= 0.01 * options.fnormtol) return finish(true, "KIN_INITIAL_GUESS_OK");
+  SUNLinSolInitialize(d.linear_solver.get());
+  if (!options.reuse_factorisation && !set_up())
+    return finish(false, "broyden: the Jacobian's set-up failed");
+  if (!simplified_step()) return finish(false, "broyden: the linear solve failed");
+  d.broyden.push(dx);
+  for (;;) {
+    x += dx;
+    ++stats.nonlinear_iterations;
+    if (!evaluate()) return finish(false, "broyden: the residual is not finite");
+    if (fnorm_inf() <= options.fnormtol) return finish(true, "KIN_SUCCESS");
+    if (stats.nonlinear_iterations >= options.max_iterations)
+      return finish(false, "KIN_MAXITER_REACHED");
+    if (!simplified_step()) return finish(false, "broyden: the linear solve failed");
+    if (!(d.broyden.next(dx) < kBroydenMaxContraction)) {  // J0 is too far: a Jacobian at x
+      if (stats.jacobian_evaluations >= options.broyden_jacobians)
+        return finish(false, "broyden: no contraction within broyden_jacobians Jacobians");
+      if (!set_up()) return finish(false, "broyden: the Jacobian's set-up failed");
+      d.broyden.clear();
+      if (!simplified_step()) return finish(false, "broyden: the linear solve failed");
+    }
+    d.broyden.push(dx);
+  }
 }
 
 }  // namespace rodlab::solvers

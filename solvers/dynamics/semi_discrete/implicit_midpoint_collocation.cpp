@@ -163,12 +163,14 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
     // A kept Jacobian of this a is the matrix KLU factorised last: start from its factors.
     ko_.reuse_factorisation = cache_valid_ && cached_a_ == a_;
     const bool fresh_start = !cache_valid_;
-    // Full (modified) Newton steps first: KINSOL's line search costs a quarter of the step at
-    // dt auto in trial residuals (docs/dynamics.md, Benchmarks). Where they do not converge in
-    // kChordIterations, the line search from the predictor again.
+    // Full steps first: KINSOL's line search costs a quarter of the step at dt auto in trial
+    // residuals (docs/dynamics.md, Benchmarks). Broyden's steps on the kept Jacobian's factors
+    // (KinsolSolver::solve_broyden: a fresh Jacobian where they stop contracting), or, for exact
+    // Newton (max_setup_calls = 1), KINSOL's. Where they do not converge in kChordIterations,
+    // KINSOL's line search from the predictor again.
     ko_.line_search = false;
     ko_.max_iterations = std::min(max_iterations_, kChordIterations);
-    KinsolStats s = solve();
+    KinsolStats s = solve(max_setup_calls_ > 1);
     long iterations = s.nonlinear_iterations;
     ko_.max_iterations = max_iterations_;
     if (!s.converged) {
@@ -403,11 +405,12 @@ class ImplicitMidpointCollocation final : public ImplicitMidpointCollocationStep
   /// Kirchhoff constraint forces or actuator unknowns: the extended system.
   bool constrained() const { return rod_.kirchhoff() || rod_.unknown_size() > 0; }
 
-  KinsolStats solve() {
+  KinsolStats solve(bool broyden = false) {
     // Starting from kept factors, KINSOL's first Jacobian request means they were too stale.
     jacobian_calls_ = ko_.reuse_factorisation ? 1 : 0;
     // (A lambda that captures only `this` sits in std::function's local buffer: no allocation.)
-    return kinsol_.solve(
+    const auto method = broyden ? &KinsolSolver::solve_broyden : &KinsolSolver::solve;
+    return (kinsol_.*method)(
         z_, [this](const ConstRef& u, Eigen::Ref<Vector> F) { residual(u, F); },
         [this](const ConstRef& u, const ConstRef&, KinsolSolver::SparseMatrix& J) {
           jacobian(u, J);

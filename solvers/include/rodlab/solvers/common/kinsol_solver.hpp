@@ -54,6 +54,9 @@ struct KinsolOptions {
   bool reuse_factorisation = false;  ///< start with the previous solve's factorised Jacobian
                                      ///< (KINSetNoInitSetup); only with KluReuse::factors and
                                      ///< after a solve that factorised one
+  /// solve_broyden: Jacobians set up at most per solve (the first one counted where the solve
+  /// does not start from kept factors); solve() ignores it.
+  int broyden_jacobians = 3;
 };
 
 struct KinsolStats {
@@ -131,6 +134,20 @@ class KinsolSolver {
   /// std::invalid_argument for bad sizes or options, rethrows a callback's exception.
   KinsolStats solve(Vector& x, const Residual& residual, const Jacobian& jacobian,
                     const KinsolOptions& options = {});
+
+  /// Solves F(x) = 0 like solve(), by full steps of good Broyden's method on one factorised
+  /// Jacobian (broyden_steps.hpp, Deuflhard's QNERR) instead of KINSOL: the kept factors of the
+  /// last solve where options.reuse_factorisation, else a Jacobian at x. Where a step's
+  /// contraction theta = |J0^-1 F(x_(k+1))| / |dx_k| (after the secant updates, in u_scale's
+  /// norm) is not below 1/2, a Jacobian at the current iterate replaces J0 and the updates
+  /// restart, up to options.broyden_jacobians set-ups in all. Converged when |f_scale .* F|_inf <=
+  /// fnormtol (KINSOL's test; an initial guess within fnormtol / 100 needs no step); else, after
+  /// max_iterations steps or a residual or Jacobian that is not finite, not converged with the
+  /// last iterate in x. The same factors as solve()'s: a later solve() may start from them. A
+  /// superlinear alternative to KINSOL's modified Newton (full steps, no line search) that
+  /// needs no Jacobian more (docs/dynamics.md "Broyden's steps").
+  KinsolStats solve_broyden(Vector& x, const Residual& residual, const Jacobian& jacobian,
+                            const KinsolOptions& options);
 
  private:
   struct Impl;
