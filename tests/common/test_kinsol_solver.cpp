@@ -5,7 +5,9 @@
 // system (root: all ones) and the Broyden tridiagonal problem (More, Garbow & Hillstrom 1981,
 // problem 30; checked by its residual), plus the error paths: exceptions thrown in callbacks
 // are rethrown after KINSol returns, non-convergence is a status with KINSOL's flag name, and a
-// Jacobian callback may not change the sparsity pattern.
+// Jacobian callback may not change the sparsity pattern. solve_broyden (good Broyden's steps on
+// one factorised Jacobian) against KINSOL's root and KINSOL's chord method, with its kept
+// factors, refreshes and failures.
 
 #include <cmath>
 #include <stdexcept>
@@ -325,4 +327,136 @@ BOOST_AUTO_TEST_CASE(bad_inputs_throw_invalid_argument) {
   bad = {};
   bad.f_scale = Vector::Ones(5);
   BOOST_CHECK_THROW(solver.solve(x, residual_of(p), jacobian_of(p), bad), std::invalid_argument);
+}
+
+// solve_broyden: full steps of good Broyden's method on one factorised Jacobian (QNERR,
+// broyden_steps.hpp). References: KINSOL's exact Newton root of the same system (to the
+// tolerance), and KINSOL's chord method on the same Jacobian (full steps, no line search,
+// max_setup_calls 1000), which converges linearly where Broyden's secant updates converge
+// superlinearly: fewer iterations from the same start.
+BOOST_AUTO_TEST_CASE(broyden_steps_find_the_root_in_fewer_iterations_than_the_chord) {
+  const BroydenTridiagonal p{200};
+  KinsolOptions options;
+  options.fnormtol = 1e-12;
+  options.u_scale = Vector::LinSpaced(p.n, 0.5, 2.0);
+  Vector reference = Vector::Constant(p.n, -1.0);
+  KinsolSolver solver(p.pattern(), KluReuse::factors);
+  BOOST_TEST_REQUIRE(solver.solve(reference, residual_of(p), jacobian_of(p), options).converged);
+
+  const double start = -0.8;
+  Vector x = Vector::Constant(p.n, start);
+  KinsolOptions one = options;
+  one.broyden_jacobians = 1;
+  const KinsolStats broyden = solver.solve_broyden(x, residual_of(p), jacobian_of(p), one);
+  Vector chord = Vector::Constant(p.n, start);
+  KinsolOptions chord_options = options;
+  chord_options.line_search = false;
+  chord_options.max_setup_calls = 1000;
+  const KinsolStats kinsol = solver.solve(chord, residual_of(p), jacobian_of(p), chord_options);
+  BOOST_TEST_MESSAGE("from " << start << ": Broyden " << broyden.nonlinear_iterations
+                             << " iterations, chord " << kinsol.nonlinear_iterations << " ("
+                             << kinsol.flag_name << ", " << kinsol.jacobian_evaluations
+                             << " Jacobians)");
+  BOOST_TEST(broyden.converged);
+  BOOST_TEST(broyden.flag_name == "KIN_SUCCESS");
+  BOOST_TEST(broyden.jacobian_evaluations == 1);
+  BOOST_TEST(broyden.function_evaluations == broyden.nonlinear_iterations + 1);
+  Vector F(p.n);
+  p.residual(x, F);
+  BOOST_TEST(F.lpNorm<Eigen::Infinity>() <= 1e-12);
+  BOOST_TEST((x - reference).lpNorm<Eigen::Infinity>() <= 1e-11);
+  BOOST_TEST(kinsol.converged);
+  BOOST_TEST(kinsol.jacobian_evaluations >= broyden.jacobian_evaluations);
+  BOOST_TEST(broyden.nonlinear_iterations < kinsol.nonlinear_iterations);
+}
+
+// Kept factors: a nearby system starts from them with no Jacobian; factors formed far away
+// stop the steps contracting, and a Jacobian is set up where they stand; an initial guess
+// within fnormtol / 100 takes no step.
+BOOST_AUTO_TEST_CASE(broyden_steps_start_from_kept_factors_and_refresh_them) {
+  const BroydenTridiagonal p{50};
+  KinsolOptions options;
+  options.fnormtol = 1e-11;
+  KinsolSolver solver(p.pattern(), KluReuse::factors);
+  Vector root = Vector::Constant(p.n, -1.0);
+  BOOST_TEST_REQUIRE(solver.solve_broyden(root, residual_of(p), jacobian_of(p), options).converged);
+  KinsolOptions kept = options;
+  kept.reuse_factorisation = true;
+  Vector x = root + Vector::Constant(p.n, 1e-3);
+  const KinsolStats near = solver.solve_broyden(x, residual_of(p), jacobian_of(p), kept);
+  BOOST_TEST(near.converged);
+  BOOST_TEST(near.jacobian_evaluations == 0);
+  BOOST_TEST((x - root).lpNorm<Eigen::Infinity>() <= 1e-10);
+
+  // Factors formed at x = 3 (one step from there), where dF_i/dx_i = 3 - 4 x_i is -9 against
+  // about +5 at the root: the kept model points the wrong way near the root.
+  Vector elsewhere = Vector::Constant(p.n, 3.0);
+  KinsolOptions one_step = options;
+  one_step.max_iterations = 1;
+  solver.solve_broyden(elsewhere, residual_of(p), jacobian_of(p), one_step);
+  x = root + Vector::Constant(p.n, 1e-2);
+  const KinsolStats refreshed = solver.solve_broyden(x, residual_of(p), jacobian_of(p), kept);
+  BOOST_TEST_MESSAGE("near the root with factors from x = 3: " << refreshed.nonlinear_iterations
+                                                               << " iterations, "
+                                                               << refreshed.jacobian_evaluations
+                                                               << " Jacobians");
+  BOOST_TEST(refreshed.converged);
+  BOOST_TEST(refreshed.jacobian_evaluations >= 1);
+  BOOST_TEST((x - root).lpNorm<Eigen::Infinity>() <= 1e-10);
+
+  KinsolOptions loose = kept;
+  loose.fnormtol = 1e-7;  // the root to 1e-11 is within fnormtol / 100
+  const KinsolStats at_root = solver.solve_broyden(x, residual_of(p), jacobian_of(p), loose);
+  BOOST_TEST(at_root.converged);
+  BOOST_TEST(at_root.flag_name == "KIN_INITIAL_GUESS_OK");
+  BOOST_TEST(at_root.nonlinear_iterations == 0);
+}
+
+BOOST_AUTO_TEST_CASE(broyden_failures_are_statuses_and_errors_are_thrown) {
+  const Rosenbrock p{4};
+  KinsolSolver solver(p.pattern());
+  KinsolOptions options;
+  options.max_iterations = 1;  // Newton needs 2 on the extended Rosenbrock system
+  Vector x = p.start();
+  const KinsolStats few = solver.solve_broyden(x, residual_of(p), jacobian_of(p), options);
+  BOOST_TEST(!few.converged);
+  BOOST_TEST(few.flag_name == "KIN_MAXITER_REACHED");
+  BOOST_TEST(few.nonlinear_iterations == 1);
+
+  // x^2 + 1 = 0: no real root; the steps stop contracting and the Jacobians run out.
+  KinsolSolver scalar(pattern_from(1, {{0, 0}}));
+  Vector y = Vector::Constant(1, 0.5);
+  const KinsolStats none = scalar.solve_broyden(
+      y, [](const ConstRef& v, VecRef F) { F[0] = v[0] * v[0] + 1.0; },
+      [](const ConstRef& v, const ConstRef&, Sparse& J) { J.coeffRef(0, 0) = 2.0 * v[0]; },
+      KinsolOptions{});
+  BOOST_TEST_MESSAGE("x^2 + 1: " << none.flag_name << " after " << none.nonlinear_iterations
+                                 << " iterations, " << none.jacobian_evaluations << " Jacobians");
+  BOOST_TEST(!none.converged);
+  BOOST_TEST(none.jacobian_evaluations == KinsolOptions{}.broyden_jacobians);
+
+  x = p.start();
+  const KinsolStats nan = solver.solve_broyden(
+      x, [](const ConstRef&, VecRef F) { F.setConstant(std::nan("")); }, jacobian_of(p), {});
+  BOOST_TEST(!nan.converged);
+  x = p.start();
+  const KinsolStats recoverable = solver.solve_broyden(
+      x, [](const ConstRef&, VecRef) { throw KinsolRecoverableError("cannot evaluate here"); },
+      jacobian_of(p), {});
+  BOOST_TEST(!recoverable.converged);
+  BOOST_TEST(recoverable.message == "cannot evaluate here");
+  x = p.start();
+  const KinsolSolver::Jacobian throwing = [](const ConstRef&, const ConstRef&, Sparse&) {
+    throw std::out_of_range("jacobian failed on purpose");
+  };
+  BOOST_CHECK_THROW(solver.solve_broyden(x, residual_of(p), throwing, {}), std::out_of_range);
+
+  KinsolOptions bad;
+  bad.broyden_jacobians = 0;
+  BOOST_CHECK_THROW(solver.solve_broyden(x, residual_of(p), jacobian_of(p), bad),
+                    std::invalid_argument);
+  bad = {};
+  bad.reuse_factorisation = true;  // a solver without KluReuse::factors keeps none
+  BOOST_CHECK_THROW(solver.solve_broyden(x, residual_of(p), jacobian_of(p), bad),
+                    std::invalid_argument);
 }
