@@ -23,9 +23,9 @@
 // (2 z / dt), or f(h, y0) after a start or a restart. Jacobian: analytic where the derivation
 // covers the scene, else finite differences with three node colours (semi_discrete_rod.hpp),
 // kept across steps and refreshed when a solve needed more
-// than a few iterations, every `jacobian_max_age` steps, or when KINSOL asks again within a
-// solve (a stale Jacobian that fails is recomputed; the diagonal follows a change of dt). Its
-// KLU factors are kept with it (KinsolSolver's KluReuse::factors): a step with the kept
+// than a few iterations, every `jacobian_max_age` steps, or within a solve where good Broyden's
+// steps on its factors stop contracting (KinsolSolver::solve_broyden; the diagonal follows a
+// change of dt). Its factors are kept with it (KinsolSolver's KluReuse::factors): a step with the kept
 // Jacobian and an unchanged dt starts from them without refactorising, the symbolic analysis
 // is done once, and a new Jacobian is refactorised numerically on the kept pivot order.
 // A step that does not converge is a failed StepStatus with KINSOL's flag and the state is left
@@ -50,8 +50,10 @@ namespace rodlab::solvers::dynamics {
 struct ImplicitMidpointCollocationOptions {
   int nodes = 20;
   double tol = 1e-10;        ///< on the scaled residual (max norm), see above
-  int max_iterations = 50;   ///< KINSOL iterations per step
-  int max_setup_calls = 10;  ///< KINSOL iterations between Jacobian evaluations within a step
+  int max_iterations = 50;   ///< Newton iterations per step
+  /// 1: exact Newton (KINSOL, a Jacobian at every iteration); otherwise a step starts with
+  /// Broyden's steps, and KINSOL's fallbacks take a Jacobian every max_setup_calls iterations
+  int max_setup_calls = 10;
   int jacobian_max_age = 50;  ///< steps a Jacobian is kept at most (0: a
                               ///< fresh one at the start of every step; with
                               ///< max_setup_calls = 1, exact Newton throughout)
