@@ -28,8 +28,10 @@ class BroydenSteps {
   /// Room for `capacity` steps in the unknowns' scaling s (allocates when it grows; then no
   /// allocation), no step recorded.
   void reset(const Eigen::Ref<const Vector>& scale, int capacity) {
-    if (steps_.rows() != scale.size() || steps_.cols() < capacity)
+    if (steps_.rows() != scale.size() || steps_.cols() < capacity) {
       steps_.resize(scale.size(), capacity);
+      duals_.resize(scale.size(), capacity);
+    }
     if (norms_.size() < capacity) norms_.resize(capacity);
     weights_ = scale.cwiseAbs2();
     k_ = 0;
@@ -42,7 +44,9 @@ class BroydenSteps {
   /// Records the step dx_k just taken (dx_0: J0's own step -J0^-1 F(x_0)); at most capacity().
   void push(const Eigen::Ref<const Vector>& dx) {
     steps_.col(k_) = dx;
-    norms_[k_] = dot(dx, dx);
+    duals_.col(k_) = weights_.cwiseProduct(dx);
+    norms_[k_] = duals_.col(k_).dot(dx);
+    duals_.col(k_) /= norms_[k_];
     ++k_;
   }
 
@@ -51,22 +55,17 @@ class BroydenSteps {
   /// (alpha >= 1, or no step recorded).
   double next(Eigen::Ref<Vector> v) const {
     if (k_ == 0) return INFINITY;
-    for (int i = 1; i < k_; ++i) v += steps_.col(i) * (dot(steps_.col(i - 1), v) / norms_[i - 1]);
-    const double last = norms_[k_ - 1];
-    const double alpha = dot(steps_.col(k_ - 1), v) / last;
-    const double theta = std::sqrt(dot(v, v) / last);
+    for (int i = 1; i < k_; ++i) v += steps_.col(i) * duals_.col(i - 1).dot(v);
+    const double alpha = duals_.col(k_ - 1).dot(v);
+    const double theta = std::sqrt(v.cwiseAbs2().dot(weights_) / norms_[k_ - 1]);
     if (!(alpha < 1.0)) return INFINITY;
     v /= 1.0 - alpha;
     return theta;
   }
 
  private:
-  template <class A, class B>
-  double dot(const A& a, const B& b) const {
-    return (a.cwiseProduct(weights_).cwiseProduct(b)).sum();
-  }
-
   Eigen::MatrixXd steps_;  ///< dx_0 .. dx_(k-1), one per column
+  Eigen::MatrixXd duals_;  ///< <dx_i, .> / |dx_i|^2 as vectors: s^2 dx_i / |dx_i|^2
   Eigen::VectorXd norms_;  ///< |dx_i|^2 in the scaled norm
   Eigen::VectorXd weights_;  ///< s_i^2
   int k_ = 0;
