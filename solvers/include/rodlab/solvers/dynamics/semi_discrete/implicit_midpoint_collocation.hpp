@@ -25,9 +25,10 @@
 // kept across steps and refreshed when a solve needed more
 // than a few iterations, every `jacobian_max_age` steps, or within a solve where good Broyden's
 // steps on its factors stop contracting (KinsolSolver::solve_broyden; the diagonal follows a
-// change of dt). Its factors are kept with it (KinsolSolver's KluReuse::factors): a step with the kept
-// Jacobian and an unchanged dt starts from them without refactorising, the symbolic analysis
-// is done once, and a new Jacobian is refactorised numerically on the kept pivot order.
+// change of dt). Its factors are kept with it (KinsolSolver's KluReuse::factors): a step
+// with the kept Jacobian and an unchanged dt starts from them without refactorising, the
+// symbolic analysis is done once, and a new Jacobian is refactorised numerically on the kept
+// pivot order.
 // A step that does not converge is a failed StepStatus with KINSOL's flag and the state is left
 // at t.
 //
