@@ -140,7 +140,8 @@ class KinsolSolver {
   /// last solve where options.reuse_factorisation, else a Jacobian at x. Where a step's
   /// contraction theta = |J0^-1 F(x_(k+1))| / |dx_k| (after the secant updates, in u_scale's
   /// norm) is not below 1/2, a Jacobian at the current iterate replaces J0 and the updates
-  /// restart, up to options.broyden_jacobians set-ups in all. Converged when |f_scale .* F|_inf <=
+  /// restart, up to options.broyden_jacobians set-ups in all (none while the residual is
+  /// within 4 fnormtol: its steps are rounding there). Converged when |f_scale .* F|_inf <=
   /// fnormtol (KINSOL's test; an initial guess within fnormtol / 100 needs no step); else, after
   /// max_iterations steps or a residual or Jacobian that is not finite, not converged with the
   /// last iterate in x. The same factors as solve()'s: a later solve() may start from them. A
