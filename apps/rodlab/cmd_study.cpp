@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -63,7 +64,8 @@ constexpr std::array<OptionSpec, 15> kSweepOptions{
     OptionSpec{"--grids", "G1,G2,...",
                "dynamics (not stability): the spatial grids to sweep, each against ida on its "
                "own grid: euler (implicit-midpoint, bdf-alpha), staggered, corrected; default: "
-               "solver.grid, else staggered"},
+               "solver.grid, else staggered (work-precision, recommend: staggered,corrected "
+               "where the scene takes the corrected grid)"},
     OptionSpec{"--reference", "NAME", "reference solution: kinsol, ida or chebyshev"},
     kStudyTolOption,
     OptionSpec{"--budget-ms", "X", "recommend: time budget per run in milliseconds, > 0"},
@@ -234,13 +236,16 @@ void print_pareto(const study::Sweep& sweep, const std::vector<bool>& pareto,
                 << io::format_number(sweep.rows[i].run.wall_time_s) << " s\n";
 }
 
-/// A dynamics study on one grid that is not the corrected grid, of a scene the corrected grid
-/// takes (a Cosserat rod without actuators): recommend's hint when nothing qualifies.
-bool corrected_grid_unswept(const study::Settings& settings) {
-  return settings.problem == Problem::dynamics && settings.grids.empty() &&
-         study::scene_grid(settings) != "corrected" &&
-         !solvers::dynamics::corrected_grid_refusal(
-             solvers::dynamics::DynamicProblem::from_scene(settings.scene));
+/// The one grid a dynamics study sweeps (the scene's solver.grid or --grids named it) when it is
+/// not the corrected grid and the scene takes that (a Cosserat rod without actuators):
+/// recommend's hint when nothing qualifies names both.
+std::optional<std::string> grid_without_corrected(const study::Settings& settings) {
+  if (settings.problem != Problem::dynamics || settings.grids.size() > 1) return std::nullopt;
+  const std::string grid = settings.grids.empty() ? study::scene_grid(settings) : settings.grids[0];
+  if (grid == "corrected" || solvers::dynamics::corrected_grid_refusal(
+                                 solvers::dynamics::DynamicProblem::from_scene(settings.scene)))
+    return std::nullopt;
+  return grid;
 }
 
 /// `study recommend` on measured (or reused) work-precision rows: prints and writes
@@ -265,9 +270,9 @@ bool recommend_and_write(const Json& wp, bool reused, const study::Settings& set
     else if (rec.most_accurate)
       std::cout << "  most accurate measured: " << describe(*rec.most_accurate) << '\n';
     std::cout << "  (refine with --nodes / --dt, or relax --tol / --budget-ms"
-              << (corrected_grid_unswept(settings)
-                      ? "; or sweep the corrected grid too: --grids " + study::scene_grid(settings) +
-                            ",corrected"
+              << (grid_without_corrected(settings)
+                      ? "; or sweep the corrected grid too: --grids " +
+                            *grid_without_corrected(settings) + ",corrected"
                       : std::string())
               << ")\n";
   }
@@ -462,6 +467,8 @@ int run(const Invocation& inv) {
     settings.t_end = run_length(settings, kind, t_end, options.scene_path);
   if (const auto grids = inv.args.value("--grids"))
     settings.grids = checked_grids(split_list(*grids), settings);
+  else if (kind == "work-precision" || recommend)
+    settings.grids = study::trade_grids(settings);
   const std::string dir =
       out_dir ? out_dir->string()
               : "out/study-" + std::string(recommend ? "work-precision" : kind);
@@ -513,8 +520,10 @@ const Command& study_command() {
       "                   docs/learning.md)\n"
       "A study is a statics study unless its schemes, its reference, --dt, --t-end, --refine or\n"
       "--grids make it a dynamics one (stability always is). Without --schemes, every scheme of\n"
-      "the class takes part; without --grids, a dynamics study runs on the scene's grid. The\n"
-      "options and the scene are checked before anything runs.\n"
+      "the class takes part. Without --grids, a dynamics study runs on the scene's grid; where\n"
+      "the scene names none, work-precision and recommend sweep the staggered grid and, for a\n"
+      "Cosserat rod without actuators, the corrected grid too. The options and the scene are\n"
+      "checked before anything runs.\n"
       "--jobs N runs N cases at once; under `mpirun -n K` the cases are split across the ranks\n"
       "and rank 0 writes the merged outputs (docs/studies.md).\n"
       "\n"

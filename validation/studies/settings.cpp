@@ -9,12 +9,11 @@
 #include <stdexcept>
 #include <string_view>
 
-#include <algorithm>
-#include <cmath>
 #include <functional>
 #include <limits>
 
 #include "rodlab/io/atomic_file.hpp"
+#include "rodlab/solvers/dynamics/corrected_grid.hpp"
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
 #include "rodlab/solvers/dynamics/solve_dynamic.hpp"
 #include "rodlab/solvers/dynamics/time_step.hpp"
@@ -121,6 +120,14 @@ Settings settings_on_grid(const Settings& settings, const std::string& grid) {
   on.scene.solver.grid = grid;
   on.grids.clear();
   return on;
+}
+
+std::vector<std::string> trade_grids(const Settings& settings) {
+  namespace dyn = solvers::dynamics;
+  if (settings.problem != solvers::Problem::dynamics || settings.scene.solver.grid ||
+      dyn::corrected_grid_refusal(dyn::DynamicProblem::from_scene(settings.scene)))
+    return {};
+  return {default_grid(), "corrected"};
 }
 
 std::string_view to_string(Refinement refine) {

@@ -54,6 +54,13 @@ std::string run_grid(std::string_view scheme, const std::string& grid);
 std::string scene_grid(const Settings& settings);
 /// `settings` for one of its grids: the scene's solver.grid set to it, no grids.
 Settings settings_on_grid(const Settings& settings, const std::string& grid);
+/// The grids a study of the trade (work-precision, recommend) sweeps when neither --grids nor the
+/// scene's solver.grid names one: the default grid and, where the scene takes it (a Cosserat rod
+/// without actuators), the corrected grid, so that every grid the schemes could run competes
+/// (issue #17: the fastest run to 1e-4 m on the cantilever is on the corrected grid). Empty (the
+/// scene's grid alone) for statics, a scene that names its grid, or one the corrected grid
+/// refuses.
+std::vector<std::string> trade_grids(const Settings& settings);
 
 /// Statics: 6, 11, 21, 41, 81 (ds halves); dynamics: 10, 20; joint refinement: 6, 11, 21, 41.
 std::vector<int> default_nodes(solvers::Problem problem, Refinement refine = Refinement::time);
