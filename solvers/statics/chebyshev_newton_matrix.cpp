@@ -86,6 +86,7 @@ void ChebyshevNewtonMatrix::substitute_force(const int (&rows)[R], const Eigen::
 
 void ChebyshevNewtonMatrix::build_element_systems(bool& regular, double singular_pivot) {
   for (std::size_t e = 0; e < elements_.size(); ++e) {
+    check_deadline();
     const Element& el = elements_[e];
     const int n = el.n, m = n - 1;
     const MatrixXd& D = *el.D;
@@ -146,6 +147,7 @@ void ChebyshevNewtonMatrix::build_reduced() {
   S_.setZero();
   const int E = static_cast<int>(elements_.size());
   for (int e = 0; e < E; ++e) {
+    check_deadline();
     const Element& el = elements_[e];
     const int n = el.n, m = n - 1, l = n - 1;
     const MatrixXd& D = *el.D;
@@ -263,13 +265,17 @@ void ChebyshevNewtonMatrix::build_reduced() {
 }
 
 bool ChebyshevNewtonMatrix::factorize(double singular_pivot) {
+  // The run's wall-time guard between the stages, per element inside them and per block of
+  // S's LU: at N = 1000 one factorisation takes seconds (deadline_lu.hpp).
   bool regular = true;
   build_element_systems(regular, singular_pivot);
   if (!regular) return false;
+  check_deadline();
   build_tip_rho_coupling();
+  check_deadline();
   build_reduced();
-  S_lu_.emplace(S_);
-  if (!regular_pivots(*S_lu_, singular_pivot)) return false;
+  S_lu_.compute(S_);
+  if (!regular_pivots(S_lu_, singular_pivot)) return false;
   if (extra_ == 0) return true;
   // (3): V = A^-1 B, and the Schur complement E - C V.
   for (int j = 0; j < extra_; ++j) {
@@ -359,7 +365,7 @@ void ChebyshevNewtonMatrix::solve_nodes(const VectorXd& b, VectorXd& x) {
   }
   for (int c = 0; c < 6; ++c) b_reduced_[last_row(E - 1, c)] += tip[c];
 
-  z_ = S_lu_->solve(b_reduced_);
+  S_lu_.solve(b_reduced_, z_);
 
   // Back substitution: dm by (C2), drho by (1).
   for (int e = 0; e < E; ++e) {

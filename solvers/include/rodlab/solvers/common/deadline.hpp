@@ -2,9 +2,10 @@
 // The wall-time guard of a run (`--max-wall-time`, DynamicSolveOptions / StaticSolveOptions
 // ::max_wall_time): a deadline per thread, set for the length of a solve by DeadlineScope and
 // checked inside every long computation (the residual callbacks of KINSOL and IDA, the Newton
-// loops of shooting and Chebyshev collocation), so that no single step or solve can overrun it
-// by more than one residual evaluation. solve_dynamic and solve_static turn WallTimeExceeded into
-// a not-converged result whose reason names the limit.
+// loops of shooting and Chebyshev collocation, and inside Chebyshev's Newton matrix factorisation
+// between its stages and LU blocks, deadline_lu.hpp), so that no single step or solve can overrun
+// it by more than one residual evaluation or one block of a factorisation. solve_dynamic and
+// solve_static turn WallTimeExceeded into a not-converged result whose reason names the limit.
 #include <chrono>
 #include <optional>
 #include <stdexcept>

@@ -42,7 +42,8 @@
 //     G_m,m(j), whose D part gives (D (x) I_3) Y, one (n-1)^2 by (n-1) x 3(n-1) product per
 //     component), the n rows, the last rows and the tip rows of (C1).
 // What is left, per element: unknowns phi_1..n-1, m_0, n_0..n-1 and rows m, n 0..n-2 plus the
-// six last rows, 6n of each: S dz = b_S, factorised by PartialPivLU. A solve forms b_S from b
+// six last rows, 6n of each: S dz = b_S, factorised by PartialPivLU's algorithm (DeadlineLu:
+// the run's wall-time guard is checked between its blocks). A solve forms b_S from b
 // (y, Z, D products), solves S, recovers dm_k by (C2) and drho by (1).
 // (3) The border (extra unknowns z, rows r): with A the node part above, [A B; C E] [dx; dz] =
 // [b; c] is solved by the Schur complement: V = A^-1 B (q solves per factorisation),
@@ -59,6 +60,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+
+#include "rodlab/solvers/common/deadline_lu.hpp"
 
 namespace rodlab::solvers::statics {
 
@@ -136,7 +139,7 @@ class ChebyshevNewtonMatrix {
   std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> rho_lu_;  ///< A_e
   Eigen::MatrixXd Z_;                                         ///< 6 x rho unknowns: T_rho A^-1
   Eigen::MatrixXd S_;
-  std::optional<Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>>> S_lu_;  ///< in place in S_
+  DeadlineLu S_lu_;  ///< in place in S_ (PartialPivLU's factors; polls the wall-time guard)
   // The border (3): V = A^-1 B and the Schur complement's LU.
   Eigen::MatrixXd border_columns_, border_rows_, border_corner_, V_;
   Eigen::PartialPivLU<Eigen::MatrixXd> schur_lu_;
