@@ -111,7 +111,8 @@ def parse_args(argv):
     a.bench = os.path.join(a.build, "bin", "bench_statics")
     for path in (a.rodlab, a.bench):
         if not os.access(path, os.X_OK):
-            p.error(f"--build: {path} is missing (build it: make -C {a.build} rodlab bench_statics)")
+            p.error(f"--build: {path} is missing "
+                    f"(build it: make -C {a.build} rodlab bench_statics)")
     known = statics_schemes(a.rodlab)
     a.schemes = known if a.schemes == "all" else a.schemes.split(",")
     for s in a.schemes:

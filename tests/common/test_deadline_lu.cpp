@@ -70,7 +70,8 @@ BOOST_AUTO_TEST_CASE(a_deadline_that_passes_during_it_stops_it_between_blocks) {
   DeadlineLu lu;
   const auto start = std::chrono::steady_clock::now();
   lu.compute(factors);  // no deadline: runs to the end
-  const double full = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double full =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   BOOST_TEST_MESSAGE("factorisation of " << n << " x " << n << ": " << full << " s");
   factors = A;
   const DeadlineScope scope(full / 3.0);

@@ -31,7 +31,8 @@ class DeadlineLu {
     using Panel = Eigen::internal::partial_lu_impl<double, Eigen::ColMajor, int>;
     // Eigen's top-level block size (blocked_lu): n / 8 rounded down to a multiple of 16, in
     // [8, 256]; at most 16 columns (Panel::UnBlockedBound) go unblocked in one piece.
-    Eigen::Index block = n <= Panel::UnBlockedBound ? n : std::clamp<Eigen::Index>(n / 8 / 16 * 16, 8, 256);
+    const Eigen::Index block =
+        n <= Panel::UnBlockedBound ? n : std::clamp<Eigen::Index>(n / 8 / 16 * 16, 8, 256);
     int* piv = transpositions_.indices().data();
     for (Eigen::Index k = 0; k < n; k += block) {
       check_deadline();
