@@ -97,6 +97,9 @@ py::object study(const PyScene& s, const std::string& kind,
       throw py::value_error("t_end: no run length; give t_end or set dynamics.t_end");
     settings.t_end = t_end ? *t_end : *scene_t_end;
   }
+  // as the command line without --grids: work-precision sweeps both grids where the scene names
+  // none and takes the corrected one (validation/studies/settings.hpp)
+  if (kind == "work-precision") settings.grids = study::trade_grids(settings);
   study::Json json;
   {
     py::gil_scoped_release unlocked;

@@ -160,6 +160,25 @@ def test_study_equals_the_command_line(tmp_path):
         rodlab.study(rodlab.Scene.load(path), "stability")
 
 
+def test_dynamic_work_precision_equals_the_command_line(tmp_path):
+    # both sweep the staggered and the corrected grid (the scene names no grid)
+    path = os.path.join(SCENES, "viscous-cantilever.yaml")
+    cli("study", "work-precision", path, "--schemes", "variational", "--nodes", "4",
+        "--t-end", "0.02", "--repeats", "1", "--out", str(tmp_path / "wp"))
+    ref = json.loads((tmp_path / "wp" / "study.json").read_text())
+    d = rodlab.study(rodlab.Scene.load(path), "work-precision", schemes=["variational"],
+                     nodes=[4], t_end=0.02, repeats=1)
+
+    def untimed(rows):
+        return [{k: v for k, v in r.items() if not k.startswith("wall_time") and k != "pareto"}
+                for r in rows]
+
+    assert d["settings"] == ref["settings"]
+    assert d["settings"]["grids"] == ["staggered", "corrected"]
+    assert untimed(d["rows"]) == untimed(ref["rows"])
+    assert {r["grid"] for r in d["rows"]} == {"staggered", "corrected"}
+
+
 def test_simulation_repeats_solve_dynamic():
     scene = rodlab.Scene.load(os.path.join(SCENES, "cantilever-gravity.yaml"))
     d = rodlab.solve_dynamic(scene, t_end=0.02)
