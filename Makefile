@@ -20,8 +20,11 @@ validate:
 	@RODLAB_BUILD_DIR=$(BUILD) RODLAB_BUILD_TARGETS=rodlab ./scripts/bootstrap.sh
 	$(BUILD)/bin/rodlab validate --quick --out out/validation
 
+# every Google Benchmark program, then the first solve of `rodlab static` against the warm one
+# for every statics scheme (bench/cold_static.py, docs/statics.md "Cold and warm solves")
 bench: bootstrap
 	@for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b --benchmark_min_time=0.2 --benchmark_repetitions=5 --benchmark_report_aggregates_only=true; done
+	@echo "== bench/cold_static.py"; /usr/bin/python3 bench/cold_static.py --build $(BUILD) --schemes all
 
 # The unit suite under ASan + UBSan in build-asan/ (scripts/sanitize.sh).
 sanitize: bootstrap

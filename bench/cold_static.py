@@ -96,7 +96,8 @@ def parse_args(argv):
     p.add_argument("--min-time", type=float, default=0.5,
                    help="seconds per warm repetition (Google Benchmark's; default 0.5)")
     p.add_argument("--rounds", type=int, default=1, help="interleaved rounds (default 1)")
-    p.add_argument("--cpu", type=int, default=1, help="the core to pin to (default 1; -1: none)")
+    p.add_argument("--cpu", type=int, default=max(os.sched_getaffinity(0)),
+                   help="the core to pin to (default: the last one allowed, %(default)s; -1: none)")
     p.add_argument("--json", help="also write the figures to this file")
     a = p.parse_args(argv)
     for name in ("runs", "repetitions", "rounds"):
