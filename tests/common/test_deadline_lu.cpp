@@ -77,3 +77,22 @@ BOOST_AUTO_TEST_CASE(a_deadline_that_passes_during_it_stops_it_between_blocks) {
   const DeadlineScope scope(full / 3.0);
   BOOST_CHECK_THROW(lu.compute(factors), WallTimeExceeded);
 }
+
+// The solves read the matrix's storage, not the matrix object: a factorised matrix moved
+// elsewhere (chebyshev's Collocation, with its Newton matrix, is moved into ChebyshevTracker and
+// its factors reused) still solves, bit for bit as PartialPivLU, while the moved-from object is
+// left empty.
+BOOST_AUTO_TEST_CASE(solves_survive_a_move_of_the_factorised_matrix) {
+  const Eigen::MatrixXd A = random_matrix(60, 5);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(60, 1.0, -3.0);
+  const Eigen::VectorXd expected = A.partialPivLu().solve(b);
+  Eigen::MatrixXd factors = A;
+  DeadlineLu lu;
+  lu.compute(factors);
+  const Eigen::MatrixXd moved = std::move(factors);
+  BOOST_TEST(factors.size() == 0);
+  Eigen::VectorXd x;
+  lu.solve(b, x);
+  BOOST_TEST((x.array() == expected.array()).all());
+  BOOST_TEST((lu.matrixLU().array() == moved.array()).all());
+}

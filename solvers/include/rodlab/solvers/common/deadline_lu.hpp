@@ -22,11 +22,15 @@ namespace rodlab::solvers {
 class DeadlineLu {
  public:
   /// Factorises the square matrix `a` in place (it holds L and U afterwards, as PartialPivLU's
-  /// matrixLU(); it must outlive the solves). Throws WallTimeExceeded between blocks once the
-  /// thread's deadline has passed (then `a` is partly factorised and must not be solved with).
+  /// matrixLU()). The solves read a's storage, as PartialPivLU<Ref<MatrixXd>> does: it must not
+  /// be resized or freed while they are used, and moving the matrix (its buffer goes along: the
+  /// chebyshev Collocation that holds it is moved into ChebyshevTracker) keeps them valid.
+  /// Throws WallTimeExceeded between blocks once the thread's deadline has passed (then `a` is
+  /// partly factorised and must not be solved with).
   void compute(Eigen::MatrixXd& a) {
-    lu_ = &a;
-    const Eigen::Index n = a.rows();
+    data_ = a.data();
+    n_ = a.rows();
+    const Eigen::Index n = n_;
     transpositions_.resize(n);
     using Panel = Eigen::internal::partial_lu_impl<double, Eigen::ColMajor, int>;
     // Eigen's top-level block size (blocked_lu): n / 8 rounded down to a multiple of 16, in
@@ -58,7 +62,7 @@ class DeadlineLu {
   }
 
   /// L (unit lower, below the diagonal) and U, in the factorised matrix.
-  const Eigen::MatrixXd& matrixLU() const { return *lu_; }
+  Eigen::Map<const Eigen::MatrixXd> matrixLU() const { return {data_, n_, n_}; }
   const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>& permutationP() const {
     return permutation_;
   }
@@ -66,12 +70,13 @@ class DeadlineLu {
   /// x = A^-1 b, as PartialPivLU::solve: P b, then L and U by substitution.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
     x.noalias() = permutation_ * b;
-    lu_->triangularView<Eigen::UnitLower>().solveInPlace(x);
-    lu_->triangularView<Eigen::Upper>().solveInPlace(x);
+    matrixLU().triangularView<Eigen::UnitLower>().solveInPlace(x);
+    matrixLU().triangularView<Eigen::Upper>().solveInPlace(x);
   }
 
  private:
-  Eigen::MatrixXd* lu_ = nullptr;
+  const double* data_ = nullptr;  ///< the factorised matrix's storage (column major, n_ x n_)
+  Eigen::Index n_ = 0;
   Eigen::Transpositions<Eigen::Dynamic, Eigen::Dynamic, int> transpositions_;
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> permutation_;
 };
