@@ -269,11 +269,10 @@ bool recommend_and_write(const Json& wp, bool reused, const study::Settings& set
                 << '\n';
     else if (rec.most_accurate)
       std::cout << "  most accurate measured: " << describe(*rec.most_accurate) << '\n';
+    const auto swept = grid_without_corrected(settings);
     std::cout << "  (refine with --nodes / --dt, or relax --tol / --budget-ms"
-              << (grid_without_corrected(settings)
-                      ? "; or sweep the corrected grid too: --grids " +
-                            *grid_without_corrected(settings) + ",corrected"
-                      : std::string())
+              << (swept ? "; or sweep the corrected grid too: --grids " + *swept + ",corrected"
+                        : std::string())
               << ")\n";
   }
   const Json out{{"schema", "rodlab.study/1"},

@@ -265,14 +265,13 @@ void ChebyshevNewtonMatrix::build_reduced() {
 }
 
 bool ChebyshevNewtonMatrix::factorize(double singular_pivot) {
-  // The run's wall-time guard between the stages, per element inside them and per block of
-  // S's LU: at N = 1000 one factorisation takes seconds (deadline_lu.hpp).
+  // The run's wall-time guard per element of the two builds, after the element systems and per
+  // block of S's LU: at N = 1000 one factorisation takes seconds (deadline_lu.hpp).
   bool regular = true;
   build_element_systems(regular, singular_pivot);
   if (!regular) return false;
   check_deadline();
   build_tip_rho_coupling();
-  check_deadline();
   build_reduced();
   S_lu_.compute(S_);
   if (!regular_pivots(S_lu_, singular_pivot)) return false;

@@ -33,25 +33,28 @@ class DeadlineLu {
     const Eigen::Index n = n_;
     transpositions_.resize(n);
     using Panel = Eigen::internal::partial_lu_impl<double, Eigen::ColMajor, int>;
-    // Eigen's top-level block size (blocked_lu): n / 8 rounded down to a multiple of 16, in
-    // [8, 256]; at most 16 columns (Panel::UnBlockedBound) go unblocked in one piece.
-    const Eigen::Index block =
-        n <= Panel::UnBlockedBound ? n : std::clamp<Eigen::Index>(n / 8 / 16 * 16, 8, 256);
     int* piv = transpositions_.indices().data();
+    int swaps = 0;
+    check_deadline();
+    if (n <= Panel::UnBlockedBound) {  // unblocked in one piece, as blocked_lu does
+      Panel::blocked_lu(n, n, a.data(), a.outerStride(), piv, swaps);
+      permutation_ = transpositions_;
+      return;
+    }
+    // Eigen's top-level block size (blocked_lu): n / 8 rounded down to a multiple of 16, in
+    // [8, 256].
+    const Eigen::Index block = std::clamp<Eigen::Index>(n / 8 / 16 * 16, 8, 256);
     for (Eigen::Index k = 0; k < n; k += block) {
-      check_deadline();
+      if (k > 0) check_deadline();
       const Eigen::Index bs = std::min(n - k, block), trailing = n - k - bs;
-      int swaps = 0;
-      if (n <= Panel::UnBlockedBound)  // the whole matrix unblocked, as blocked_lu does
-        Panel::blocked_lu(n, n, a.data(), a.outerStride(), piv, swaps);
-      else
-        Panel::blocked_lu(n - k, bs, &a.coeffRef(k, k), a.outerStride(), piv + k, swaps, 16);
+      Panel::blocked_lu(n - k, bs, &a.coeffRef(k, k), a.outerStride(), piv + k, swaps, 16);
+      auto left = a.leftCols(k);
       for (Eigen::Index i = k; i < k + bs; ++i) {
-        if (n > Panel::UnBlockedBound) piv[i] += static_cast<int>(k);
-        a.block(0, 0, n, k).row(i).swap(a.block(0, 0, n, k).row(piv[i]));
+        piv[i] += static_cast<int>(k);
+        left.row(i).swap(left.row(piv[i]));
       }
       if (trailing == 0) continue;
-      auto right = a.block(0, k + bs, n, trailing);
+      auto right = a.rightCols(trailing);
       for (Eigen::Index i = k; i < k + bs; ++i) right.row(i).swap(right.row(piv[i]));
       auto A12 = a.block(k, k + bs, bs, trailing);
       a.block(k, k, bs, bs).triangularView<Eigen::UnitLower>().solveInPlace(A12);
