@@ -1,5 +1,7 @@
 #include "rodlab/solvers/statics/rkmk.hpp"
 
+#include <algorithm>
+
 #include <Eigen/LU>
 
 namespace rodlab::solvers::statics {
@@ -163,17 +165,19 @@ int order(RkmkMethod method) {
   return 0;
 }
 
-ShootResult shoot(const StaticProblem& problem, RkmkMethod method, int nodes, const Vector6& Lambda0,
-                  std::span<Node> path) {
+ShootResult shoot_span(const StaticProblem& problem, RkmkMethod method, int nodes, int first,
+                       int last, const Node& start, std::span<Node> path) {
   const double L = problem.length();
   const double h = L / (nodes - 1);
   const auto& breaks = problem.breakpoints();
   ShootResult out;
   auto* lengths = problem.tracks_lengths() ? &out.lengths : nullptr;
-  Node node{problem.base(), Lambda0};
+  Node node = start;
   if (!path.empty()) path[0] = node;
-  std::size_t next_break = 0;
-  for (int i = 1; i < nodes; ++i) {
+  // A breakpoint at node `first` belongs to the span that ends there (its jump is in `start`).
+  std::size_t next_break =
+      first == 0 ? 0 : std::upper_bound(breaks.begin(), breaks.end(), first * h) - breaks.begin();
+  for (int i = first + 1; i <= last; ++i) {
     double s = (i - 1) * h;
     const double s_end = i == nodes - 1 ? L : i * h;
     // Sub-steps between breakpoints: the integrand is smooth on each.
@@ -197,11 +201,16 @@ ShootResult shoot(const StaticProblem& problem, RkmkMethod method, int nodes, co
         ++next_break;
       }
     }
-    if (!path.empty()) path[i] = node;
+    if (!path.empty()) path[i - first] = node;
   }
   out.tip = node;
   out.ok = node.g.translation().allFinite();
   return out;
+}
+
+ShootResult shoot(const StaticProblem& problem, RkmkMethod method, int nodes, const Vector6& Lambda0,
+                  std::span<Node> path) {
+  return shoot_span(problem, method, nodes, 0, nodes - 1, Node{problem.base(), Lambda0}, path);
 }
 
 }  // namespace rodlab::solvers::statics

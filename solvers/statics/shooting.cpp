@@ -5,6 +5,7 @@
 
 #include "rodlab/solvers/common/newton.hpp"
 #include "rodlab/solvers/statics/continuation.hpp"
+#include "rodlab/solvers/statics/multiple_shooting.hpp"
 #include "rodlab/solvers/statics/result_builder.hpp"
 
 namespace rodlab::solvers::statics {
@@ -80,9 +81,7 @@ class ShootingSolver {
       if (extra_) P_.extra_residuals(end.lengths, std::span<double>(r.data() + 6, extra_));
       return true;
     };
-    NewtonOptions newton;
-    newton.tol = options_.tol;
-    newton.max_iterations = options_.max_iterations;
+    NewtonOptions newton = newton_options();
     // The Jacobian of the continuous shooting map, approximated by a coarse RK4 integration
     // (about 10x cheaper than one fine integration per column); Broyden corrects the rest.
     // Only for rk4: for the low-order methods the coarse Jacobian is far from their own
@@ -134,7 +133,7 @@ class ShootingSolver {
     // (under a large dead load, an unstable one: the rod folded back over its base; measured with
     // rkmk-rk4 at P L^2/EI = 41, tests/statics/test_dead_load_branch).
     // The load continuation follows the branch from the unloaded rod and decides; a converged
-    // direct solution is kept if the continuation fails.
+    // direct solution is kept if the continuation fails; if neither converged, multiple shooting.
     const bool own_start = options_.base_wrench_guess.has_value();
     if (!own_start &&
         (!converged || direct.backtracks > 0 || direct.iterations > kTrustedDirectIterations)) {
@@ -149,9 +148,28 @@ class ShootingSolver {
       }
     }
     P_.set_load_factor(1.0);
-    set_state(x);
     std::vector<Node> path(options_.nodes);
-    shoot(P_, method_, options_.nodes, base_wrench(x), path);
+    bool marched = false;  // path holds the solution's nodes
+    if (!converged && !own_start) {
+      // The last resort: the same discrete equations by multiple shooting, from the reference
+      // configuration at the full load (as kinsol's last step; multiple_shooting.hpp).
+      MultipleShootingResult ms =
+          solve_multiple_shooting(P_, method_, options_.nodes, newton_options());
+      iterations_ += ms.newton.iterations;
+      if (ms.newton.converged) {
+        converged = true;
+        residual = ms.newton.residual_norm;
+        reason.clear();
+        path = std::move(ms.path);
+        marched = true;
+      } else {
+        reason += "; multiple shooting: " + ms.newton.reason;
+      }
+    }
+    if (!marched) {
+      set_state(x);
+      shoot(P_, method_, options_.nodes, base_wrench(x), path);
+    }
     std::vector<double> s(options_.nodes);
     std::vector<SE3> g(options_.nodes);
     std::vector<Vector6> Lambda(options_.nodes);
@@ -172,6 +190,12 @@ class ShootingSolver {
   }
 
  private:
+  NewtonOptions newton_options() const {
+    NewtonOptions newton;
+    newton.tol = options_.tol;
+    newton.max_iterations = options_.max_iterations;
+    return newton;
+  }
   Vector6 base_wrench(const VectorXd& x) const { return x.head<6>().cwiseProduct(P_.wrench_scale()); }
   void set_state(const VectorXd& x) {
     if (extra_) P_.set_extra_unknowns(std::span<const double>(x.data() + 6, extra_));

@@ -39,4 +39,12 @@ struct ShootResult {
 ShootResult shoot(const StaticProblem& problem, RkmkMethod method, int nodes,
                   const Vector6& Lambda0, std::span<Node> path = {});
 
+/// Integrates the nodes first..last (first < last) of the same grid of `nodes` nodes from
+/// `start` at node `first`: a multiple-shooting interval (multiple_shooting.hpp). With start =
+/// shoot()'s node `first` it is shoot()'s path between those nodes, bit for bit. A breakpoint
+/// at node `first` belongs to the span that ends there (its jump is in `start`). `path`: empty
+/// or last - first + 1 nodes. ShootResult::lengths is the span's share of the path lengths.
+ShootResult shoot_span(const StaticProblem& problem, RkmkMethod method, int nodes, int first,
+                       int last, const Node& start, std::span<Node> path = {});
+
 }  // namespace rodlab::solvers::statics

@@ -1,0 +1,169 @@
+#define BOOST_TEST_MODULE statics_multiple_shooting
+#include <boost/test/unit_test.hpp>
+
+#include <string>
+#include <vector>
+
+#include "actuator_support.hpp"
+#include "rodlab/solvers/statics/multiple_shooting.hpp"
+#include "rodlab/solvers/statics/result_builder.hpp"
+#include "rodlab/solvers/statics/shooting.hpp"
+#include "statics_support.hpp"
+
+// Multiple shooting, the shooting schemes' last resort (multiple_shooting.hpp):
+// 1. its intervals march the single march's steps: chained from the single march's nodes they
+//    reproduce it bit for bit, across a cable entering at an interval start and breakpoints
+//    inside intervals (reference: shoot());
+// 2. it solves the scheme's own discrete equations: on an actuated rod with two extra unknowns
+//    its nodes equal single shooting's to the Newton tolerance (reference: single shooting);
+// 3. it solves the constant-twist load with large shear that single shooting and its load
+//    continuation cannot (tests/statics/test_statics_robustness.cpp; reference: the closed
+//    form g(s) = exp(s xi), exact for every RKMK scheme).
+
+namespace {
+
+using namespace rodlab;
+using namespace rodlab::solvers;
+using namespace rodlab::solvers::statics;
+using rodlab::testing::actuators::kL;
+using rodlab::testing::actuators::straight;
+using rodlab::testing::statics::ad_matrix;
+using rodlab::testing::statics::expm_reference;
+using rodlab::testing::statics::pose_error;
+using rodlab::testing::statics::Table21;
+
+const RkmkMethod kMethods[] = {RkmkMethod::euler_explicit, RkmkMethod::euler_implicit,
+                               RkmkMethod::midpoint_explicit, RkmkMethod::midpoint_implicit,
+                               RkmkMethod::rk4};
+constexpr int kNodes = 21;
+
+/// The chamber and the muscle of actuator_support.hpp (two extra unknowns, breakpoints at
+/// 0.0287 and 0.0613, inside intervals) and a 0.4 N cable entering at node 10, an interval start
+/// of 16 intervals on 21 nodes.
+StaticProblem actuated_problem() {
+  StaticProblem P(rodlab::testing::actuators::table21(), SE3::identity());
+  rodlab::testing::actuators::add_chamber_and_muscle(P);
+  auto cable = straight(ActuatorKind::cable, -0.003, 0.002, 10 * (kL / (kNodes - 1)), kL);
+  cable.input = 0.4;
+  P.add_actuator(cable);
+  return P;
+}
+
+/// The large-shear constant-twist load of test_statics_robustness.cpp: xi = [3, -2, 5, 0.04,
+/// -0.03, 1.02] /m held by the tip wrench K (xi - xi*) and the body load ad_xi^T of it.
+StaticProblem constant_twist_problem(const Vector6& xi) {
+  const Vector6 K = (Vector6() << Table21::EI, Table21::EI, Table21::GJ, Table21::GA,
+                     Table21::GA, Table21::EA).finished();
+  const Vector6 xi_star = (Vector6() << 0, 0, 0, 0, 0, 1).finished();
+  const Vector6 Lambda = K.cwiseProduct(xi - xi_star);
+  StaticProblem P = rodlab::testing::statics::tip_wrench_problem(rod::ModelKind::cosserat, Lambda,
+                                                                  loads::WrenchFrame::body);
+  P.set_distributed(
+      loads::DistributedWrench{ad_matrix(xi).transpose() * Lambda, loads::WrenchFrame::body});
+  return P;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(spans_chained_reproduce_the_single_march) {
+  StaticProblem P = actuated_problem();
+  BOOST_TEST_REQUIRE(P.has_entry(10 * (kL / (kNodes - 1))));
+  BOOST_TEST_REQUIRE(P.tracks_lengths());
+  P.set_extra_unknowns(std::vector<double>{0.3, -0.2});  // forces off their rest values
+  const Vector6 Lambda0 = (Vector6() << 2e-3, -1e-3, 5e-4, 0.05, -0.02, 0.3).finished();
+  for (const RkmkMethod method : kMethods) {
+    std::vector<Node> single(kNodes), spans(kNodes);
+    const ShootResult whole = shoot(P, method, kNodes, Lambda0, single);
+    BOOST_TEST_REQUIRE(whole.ok);
+    std::array<double, StaticProblem::kMaxActuators> lengths{};
+    for (const auto& [first, last] : {std::pair{0, 3}, std::pair{3, 10}, std::pair{10, 20}}) {
+      const auto path = std::span<Node>(spans).subspan(first, last - first + 1);
+      const ShootResult part = shoot_span(P, method, kNodes, first, last, single[first], path);
+      BOOST_TEST_REQUIRE(part.ok);
+      for (std::size_t a = 0; a < lengths.size(); ++a) lengths[a] += part.lengths[a];
+    }
+    for (int i = 0; i < kNodes; ++i) {
+      BOOST_TEST((spans[i].g.matrix() == single[i].g.matrix()), "node " << i);
+      BOOST_TEST((spans[i].Lambda == single[i].Lambda), "node " << i);
+    }
+    for (int a = 0; a < 3; ++a)  // summed in another order: rounding
+      BOOST_TEST(lengths[a] == whole.lengths[a], boost::test_tools::tolerance(1e-14));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(solves_the_schemes_own_equations) {
+  for (const RkmkMethod method : kMethods) {
+    StaticProblem P = actuated_problem();
+    ShootingOptions single;
+    single.nodes = kNodes;
+    single.tol = 1e-12;
+    const auto reference = solve_shooting(P, method, single);
+    BOOST_TEST_REQUIRE(reference.converged, reference.reason);
+    NewtonOptions newton;
+    newton.tol = 1e-12;
+    const MultipleShootingResult ms = solve_multiple_shooting(P, method, kNodes, newton);
+    BOOST_TEST_REQUIRE(ms.newton.converged, ms.newton.reason);
+    BOOST_TEST(ms.newton.iterations <= 20);
+    // The result shooting would write from these nodes (P holds multiple shooting's unknowns).
+    std::vector<double> s(kNodes);
+    std::vector<SE3> g(kNodes);
+    std::vector<Vector6> Lambda(kNodes);
+    for (int i = 0; i < kNodes; ++i) {
+      s[i] = kL * i / (kNodes - 1);
+      g[i] = ms.path[i].g;
+      Lambda[i] = ms.path[i].Lambda;
+    }
+    result::StaticResult found;
+    fill_static_result(P, s, g, Lambda, found);
+    double pose = 0.0, twist = 0.0;
+    for (int i = 0; i < kNodes; ++i) {
+      pose = std::max(pose, pose_error(found.centerline[i].pose, reference.centerline[i].pose, kL).max());
+      twist = std::max(twist, kL * (found.centerline[i].twist - reference.centerline[i].twist)
+                                       .lpNorm<Eigen::Infinity>());
+    }
+    const double wrench = (found.base_wrench - reference.base_wrench)
+                              .cwiseQuotient(P.wrench_scale())
+                              .lpNorm<Eigen::Infinity>();
+    BOOST_TEST_MESSAGE("method " << static_cast<int>(method) << ": " << ms.newton.iterations
+                                 << " iterations, node pose " << pose << ", twist L " << twist
+                                 << ", base wrench " << wrench);
+    BOOST_TEST(pose <= 1e-10);
+    BOOST_TEST(twist <= 1e-10);
+    BOOST_TEST(wrench <= 1e-10);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(solves_where_single_shooting_cannot) {
+  const Vector6 xi = (Vector6() << 3.0, -2.0, 5.0, 0.04, -0.03, 1.02).finished();
+  StaticProblem P = constant_twist_problem(xi);
+  for (const int nodes : {5, 11}) {
+    // Single shooting's Newton from the rigid guess finds no descent here (the march blows up
+    // for nearby base wrenches), and its continuation stalls (test_statics_robustness.cpp).
+    const NewtonResult direct = [&] {
+      const Residual F = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+        const auto end = shoot(P, RkmkMethod::euler_explicit, nodes,
+                               x.head<6>().cwiseProduct(P.wrench_scale()));
+        r = P.tip_residual(end.tip.g, end.tip.Lambda);
+        return end.ok && r.allFinite();
+      };
+      NewtonOptions o;
+      o.tol = 1e-12;
+      return solve_newton(F, rigid_base_wrench(P, nodes - 1).cwiseQuotient(P.wrench_scale()), o);
+    }();
+    BOOST_TEST(!direct.converged, "single shooting now converges at N = " << nodes);
+    NewtonOptions newton;
+    newton.tol = 1e-12;
+    const auto ms = solve_multiple_shooting(P, RkmkMethod::euler_explicit, nodes, newton);
+    BOOST_TEST_REQUIRE(ms.newton.converged, ms.newton.reason);
+    double e = 0.0;
+    for (int i = 0; i < nodes; ++i) {
+      const double s = kL * i / (nodes - 1);
+      e = std::max(e, pose_error(ms.path[i].g, expm_reference(s * xi)).max());
+    }
+    BOOST_TEST_MESSAGE("N = " << nodes << ": " << ms.newton.iterations << " iterations, node error " << e);
+    BOOST_TEST(e <= 1e-9);
+    // The whole shooting scheme: direct, continuation, then multiple shooting.
+    const auto r = rodlab::testing::statics::solve(P, "rkmk-euler-explicit", nodes);
+    BOOST_TEST(r.converged, r.reason);
+  }
+}
