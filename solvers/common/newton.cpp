@@ -74,7 +74,8 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
     if (out.F.lpNorm<Eigen::Infinity>() <= options.tol) return finish(true, "");
     if (!have_J) {
       Evaluator& je = separate_jacobian ? jacobian_eval : eval;
-      if (!fd_jacobian(je, out.x, out.F, options.fd_step, J, separate_jacobian))
+      if (options.jacobian ? !options.jacobian(out.x, out.F, J)
+                           : !fd_jacobian(je, out.x, out.F, options.fd_step, J, separate_jacobian))
         return finish(false, "the residual is not finite near the current iterate");
       have_J = J_is_fd = true;
     }

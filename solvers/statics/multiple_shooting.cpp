@@ -8,118 +8,164 @@
 #include "rodlab/solvers/statics/shooting.hpp"
 
 namespace rodlab::solvers::statics {
-namespace {
 
+using Eigen::MatrixXd;
 using Eigen::VectorXd;
+using Lengths = std::array<double, StaticProblem::kMaxActuators>;
 
-/// An interior interval start's unknowns: rotation vector (3), position / L (3), Lambda (6).
-constexpr int kStart = 12;
-
-class MultipleShooting {
- public:
-  MultipleShooting(StaticProblem& problem, RkmkMethod method, int nodes)
-      : P_(problem), method_(method), nodes_(nodes), extra_(problem.extra_unknowns()),
-        h_(problem.length() / (nodes - 1)) {
-    const int M = std::min(nodes - 1, kMaxShootingIntervals);
-    for (int k = 0; k <= M; ++k)
-      bounds_.push_back(static_cast<int>(std::lround(static_cast<double>(k) * (nodes - 1) / M)));
-  }
-
-  int intervals() const { return static_cast<int>(bounds_.size()) - 1; }
-  int size() const { return 6 + kStart * (intervals() - 1) + extra_; }
-
-  /// The reference configuration g(s) = base rest_pose(s) at the interval starts, with the
-  /// undeformed rod's equilibrium wrench (zero for a clamped tip), the extra unknowns at their
-  /// initial guess; it fixes the rotations the unknowns are measured against.
-  VectorXd reference_guess() {
-    const int M = intervals();
-    std::vector<double> s(M);
-    for (int k = 0; k < M; ++k) s[k] = bounds_[k] * h_;
-    const std::vector<Vector6> Lambda = rigid_wrench_profile(P_, s, nodes_ - 1);
-    VectorXd x(size());
-    x.head<6>() = Lambda[0].cwiseQuotient(P_.wrench_scale());
-    reference_.assign(M, SO3());
-    for (int k = 1; k < M; ++k) {
-      const SE3 g = P_.base() * P_.model().rest_pose(s[k]);
-      reference_[k] = g.rotation();
-      x.segment<kStart>(offset(k)) << Vector3::Zero(), g.translation() / P_.length(),
-          Lambda[k].cwiseQuotient(P_.wrench_scale());
-    }
-    const auto z = P_.extra_initial_guess();
-    for (int e = 0; e < extra_; ++e) x[size() - extra_ + e] = z[e];
-    return x;
-  }
-
-  /// [joins of the intervals k = 0..M-2 (rotation, position / L, Lambda / scale); the tip
-  /// conditions; the actuator conditions]. False where a march fails.
-  bool residual(const VectorXd& x, VectorXd& r) { return march(x, &r, {}); }
-
-  /// The grid's nodes at x (each interval's start, then its march).
-  bool path(const VectorXd& x, std::vector<Node>& nodes) {
-    nodes.resize(nodes_);
-    return march(x, nullptr, nodes);
-  }
-
- private:
-  int offset(int k) const { return 6 + kStart * (k - 1); }
-
-  Node start(const VectorXd& x, int k) const {
-    if (k == 0) return {P_.base(), x.head<6>().cwiseProduct(P_.wrench_scale())};
-    const auto u = x.segment<kStart>(offset(k));
-    return {SE3(reference_[k] * SO3::exp(u.head<3>()), P_.length() * u.segment<3>(3)),
-            u.tail<6>().cwiseProduct(P_.wrench_scale())};
-  }
-
-  bool march(const VectorXd& x, VectorXd* r, std::span<Node> path) {
-    if (extra_) P_.set_extra_unknowns(std::span<const double>(x.data() + size() - extra_, extra_));
-    const int M = intervals();
-    if (r) r->resize(size());
-    std::array<double, StaticProblem::kMaxActuators> lengths{};
-    Node from = start(x, 0);
-    for (int k = 0; k < M; ++k) {
-      const int first = bounds_[k], last = bounds_[k + 1];
-      const auto span = path.empty() ? path : path.subspan(first, last - first + 1);
-      const ShootResult end = shoot_span(P_, method_, nodes_, first, last, from, span);
-      if (!end.ok) return false;
-      for (std::size_t a = 0; a < lengths.size(); ++a) lengths[a] += end.lengths[a];
-      if (k + 1 == M) {
-        if (r) r->segment<6>(size() - extra_ - 6) = P_.tip_residual(end.tip.g, end.tip.Lambda);
-        break;
-      }
-      const Node next = start(x, k + 1);
-      if (r)
-        r->segment<kStart>(kStart * k)
-            << (next.g.rotation().inverse() * end.tip.g.rotation()).log(),
-            (end.tip.g.translation() - next.g.translation()) / P_.length(),
-            (end.tip.Lambda - next.Lambda).cwiseQuotient(P_.wrench_scale());
-      from = next;
-    }
-    if (r && extra_)
-      P_.extra_residuals(lengths, std::span<double>(r->data() + size() - extra_, extra_));
-    return true;
-  }
-
-  StaticProblem& P_;
-  RkmkMethod method_;
-  int nodes_, extra_;
-  double h_;
-  std::vector<int> bounds_;    // the intervals' first and last nodes
-  std::vector<SO3> reference_; // the rotations the start unknowns are measured against
+struct MultipleShooting::Marched {
+  Node end;
+  Lengths lengths{};
 };
 
-}  // namespace
+MultipleShooting::MultipleShooting(StaticProblem& problem, RkmkMethod method, int nodes)
+    : P_(problem), method_(method), nodes_(nodes), extra_(problem.extra_unknowns()) {
+  const int M = std::min(nodes - 1, kMaxShootingIntervals);
+  for (int k = 0; k <= M; ++k)
+    bounds_.push_back(static_cast<int>(std::lround(static_cast<double>(k) * (nodes - 1) / M)));
+  const double h = P_.length() / (nodes - 1);
+  for (int k = 0; k < M; ++k)
+    reference_.push_back((P_.base() * P_.model().rest_pose(bounds_[k] * h)).rotation());
+}
 
-MultipleShootingResult solve_multiple_shooting(StaticProblem& problem, RkmkMethod method,
-                                               int nodes, const NewtonOptions& options) {
-  MultipleShooting ms(problem, method, nodes);
-  MultipleShootingResult out;
-  const Residual F = [&ms](const VectorXd& x, VectorXd& r) { return ms.residual(x, r); };
-  out.newton = solve_newton(F, ms.reference_guess(), options);
-  if (out.newton.converged && !ms.path(out.newton.x, out.path)) {
-    out.newton.converged = false;  // cannot happen: the residual was evaluated at x
-    out.newton.reason = "the march failed at the solution";
+int MultipleShooting::size() const { return 6 + 12 * (intervals() - 1) + extra_; }
+
+VectorXd MultipleShooting::reference_guess() const {
+  const int M = intervals();
+  const double h = P_.length() / (nodes_ - 1);
+  std::vector<double> s(M);
+  for (int k = 0; k < M; ++k) s[k] = bounds_[k] * h;
+  const std::vector<Vector6> Lambda = rigid_wrench_profile(P_, s, nodes_ - 1);
+  VectorXd x(size());
+  x.head<6>() = Lambda[0].cwiseQuotient(P_.wrench_scale());
+  for (int k = 1; k < M; ++k)
+    x.segment<12>(offset(k)) << Vector3::Zero(),
+        (P_.base() * P_.model().rest_pose(s[k])).translation() / P_.length(),
+        Lambda[k].cwiseQuotient(P_.wrench_scale());
+  const auto z = P_.extra_initial_guess();
+  for (int e = 0; e < extra_; ++e) x[size() - extra_ + e] = z[e];
+  return x;
+}
+
+Node MultipleShooting::start(const VectorXd& x, int k) const {
+  if (k == 0) return {P_.base(), x.head<6>().cwiseProduct(P_.wrench_scale())};
+  const auto u = x.segment<12>(offset(k));
+  return {SE3(reference_[k] * SO3::exp(u.head<3>()), P_.length() * u.segment<3>(3)),
+          u.tail<6>().cwiseProduct(P_.wrench_scale())};
+}
+
+bool MultipleShooting::march(int k, const Node& from, Marched& out, std::span<Node> path) const {
+  const int first = bounds_[k], last = bounds_[k + 1];
+  const ShootResult r = shoot_span(P_, method_, nodes_, first, last, from,
+                                   path.empty() ? path : path.subspan(first, last - first + 1));
+  out.end = r.tip;
+  out.lengths = r.lengths;
+  return r.ok;
+}
+
+void MultipleShooting::interval_rows(int k, const Node& end, const VectorXd& x,
+                                     Eigen::Ref<VectorXd> rows) const {
+  if (k + 1 == intervals()) {
+    rows = P_.tip_residual(end.g, end.Lambda);
+    return;
   }
+  const Node next = start(x, k + 1);
+  rows << (next.g.rotation().inverse() * end.g.rotation()).log(),
+      (end.g.translation() - next.g.translation()) / P_.length(),
+      (end.Lambda - next.Lambda).cwiseQuotient(P_.wrench_scale());
+}
+
+void MultipleShooting::set_extras(const VectorXd& x) const {
+  if (extra_) P_.set_extra_unknowns(std::span<const double>(x.data() + size() - extra_, extra_));
+}
+
+bool MultipleShooting::residual(const VectorXd& x, VectorXd& r) const {
+  set_extras(x);
+  r.resize(size());
+  Lengths total{};
+  for (int k = 0; k < intervals(); ++k) {
+    Marched m;
+    if (!march(k, start(x, k), m)) return false;
+    interval_rows(k, m.end, x, r.segment(12 * k, k + 1 == intervals() ? 6 : 12));
+    for (std::size_t a = 0; a < total.size(); ++a) total[a] += m.lengths[a];
+  }
+  if (extra_) P_.extra_residuals(total, std::span<double>(r.data() + tip_row() + 6, extra_));
+  return r.allFinite();
+}
+
+bool MultipleShooting::jacobian(const VectorXd& x, const VectorXd& r, MatrixXd& J,
+                                double fd_step) const {
+  const int M = intervals(), n = size();
+  set_extras(x);
+  std::vector<Marched> base(M);
+  for (int k = 0; k < M; ++k)
+    if (!march(k, start(x, k), base[k])) return false;
+  J.setZero(n, n);
+  VectorXd xp = x, rows(12), extras(extra_);
+  for (int k = 0; k < M; ++k) {
+    const int len = k + 1 == M ? 6 : 12;
+    for (int j = column(k); j < column(k) + columns(k); ++j) {
+      double h = fd_step * std::max(1.0, std::abs(x[j]));
+      Marched m;
+      xp[j] = x[j] + h;
+      if (!march(k, start(xp, k), m)) {  // the other side before giving up
+        h = -h;
+        xp[j] = x[j] + h;
+        if (!march(k, start(xp, k), m)) return false;
+      }
+      // The start of interval k moves its own march, the join before it and the lengths.
+      interval_rows(k, m.end, xp, rows.head(len));
+      J.col(j).segment(12 * k, len) = (rows.head(len) - r.segment(12 * k, len)) / h;
+      if (k > 0) {
+        interval_rows(k - 1, base[k - 1].end, xp, rows);
+        J.col(j).segment<12>(12 * (k - 1)) = (rows - r.segment<12>(12 * (k - 1))) / h;
+      }
+      if (extra_) {
+        Lengths total{};
+        for (int i = 0; i < M; ++i)
+          for (std::size_t a = 0; a < total.size(); ++a)
+            total[a] += (i == k ? m.lengths : base[i].lengths)[a];
+        P_.extra_residuals(total, std::span<double>(extras.data(), extra_));
+        J.col(j).tail(extra_) = (extras - r.tail(extra_)) / h;
+      }
+      xp[j] = x[j];
+    }
+  }
+  // An actuator unknown changes the strain law everywhere: a whole residual per column.
+  VectorXd rp(n);
+  for (int j = n - extra_; j < n; ++j) {
+    double h = fd_step * std::max(1.0, std::abs(x[j]));
+    xp[j] = x[j] + h;
+    if (!residual(xp, rp)) {
+      h = -h;
+      xp[j] = x[j] + h;
+      if (!residual(xp, rp)) return false;
+    }
+    J.col(j) = (rp - r) / h;
+    xp[j] = x[j];
+  }
+  set_extras(x);
+  return J.allFinite();
+}
+
+NewtonResult MultipleShooting::solve(const VectorXd& guess, NewtonOptions options) const {
+  options.jacobian = [this, step = options.fd_step](const VectorXd& x, const VectorXd& F,
+                                                    MatrixXd& J) {
+    return jacobian(x, F, J, step);
+  };
+  const Residual F = [this](const VectorXd& x, VectorXd& r) { return residual(x, r); };
+  NewtonResult out = solve_newton(F, guess, options);
+  set_extras(out.x);
   return out;
+}
+
+bool MultipleShooting::path(const VectorXd& x, std::vector<Node>& nodes) const {
+  set_extras(x);
+  nodes.resize(nodes_);
+  Marched m;
+  for (int k = 0; k < intervals(); ++k)
+    if (!march(k, start(x, k), m, nodes)) return false;
+  return true;
 }
 
 }  // namespace rodlab::solvers::statics

@@ -132,38 +132,36 @@ class ShootingSolver {
     // steps, or that wandered for many iterations, may have jumped to another equilibrium branch
     // (under a large dead load, an unstable one: the rod folded back over its base; measured with
     // rkmk-rk4 at P L^2/EI = 41, tests/statics/test_dead_load_branch).
-    // The load continuation follows the branch from the unloaded rod and decides; a converged
-    // direct solution is kept if the continuation fails; if neither converged, multiple shooting.
+    // The load continuation, by multiple shooting, follows the branch from the unloaded rod and
+    // decides; a converged direct solution is kept if the continuation fails; if neither
+    // converged, multiple shooting at the full load.
     const bool own_start = options_.base_wrench_guess.has_value();
+    std::vector<Node> path(options_.nodes);
+    bool marched = false;  // path holds the continuation's solution
     if (!own_start &&
         (!converged || direct.backtracks > 0 || direct.iterations > kTrustedDirectIterations)) {
-      auto cont = continuation();
-      if (cont.converged) {
-        converged = true;
-        x = cont.state;
+      MultipleShooting ms(P_, method_, options_.nodes);
+      const ContinuationResult cont = continuation(ms);
+      P_.set_load_factor(1.0);
+      if (cont.converged && ms.path(cont.state, path)) {
+        converged = marched = true;
         residual = cont.residual_norm;
         reason.clear();
       } else if (!converged) {
         reason = "direct Newton: " + reason + "; continuation: " + cont.reason;
-      }
-    }
-    P_.set_load_factor(1.0);
-    std::vector<Node> path(options_.nodes);
-    bool marched = false;  // path holds the solution's nodes
-    if (!converged && !own_start) {
-      // The last resort: the same discrete equations by multiple shooting, from the reference
-      // configuration at the full load (as kinsol's last step; multiple_shooting.hpp).
-      MultipleShootingResult ms =
-          solve_multiple_shooting(P_, method_, options_.nodes, newton_options());
-      iterations_ += ms.newton.iterations;
-      if (ms.newton.converged) {
-        converged = true;
-        residual = ms.newton.residual_norm;
-        reason.clear();
-        path = std::move(ms.path);
-        marched = true;
-      } else {
-        reason += "; multiple shooting: " + ms.newton.reason;
+        // The last resort, as kinsol's: multiple shooting at the full load from the reference
+        // configuration (not held to the load path's branch). Measured: rkmk-euler-explicit at
+        // N = 5 under test_statics_robustness's large-shear constant twist, whose discrete load
+        // path stalls at load factor 0.54, reaches the closed form here.
+        const NewtonResult last = ms.solve(ms.reference_guess(), newton_options());
+        iterations_ += last.iterations;
+        if (last.converged && ms.path(last.x, path)) {
+          converged = marched = true;
+          residual = last.residual_norm;
+          reason.clear();
+        } else {
+          reason += "; multiple shooting at the full load: " + last.reason;
+        }
       }
     }
     if (!marched) {
@@ -201,21 +199,31 @@ class ShootingSolver {
     if (extra_) P_.set_extra_unknowns(std::span<const double>(x.data() + 6, extra_));
   }
 
-  /// Walks the load factor from 0 (where the rigid guess solves exactly) to 1 (continuation.hpp);
-  /// the first step is predicted by the change of the rigid guess.
-  ContinuationResult continuation() {
+  /// Walks the load factor from 0 (where the reference configuration solves exactly) to 1
+  /// (continuation.hpp) with multiple shooting's corrector: single shooting's amplification
+  /// made its correctors land on folded branches of large dead loads through clean steps
+  /// (rkmk-midpoint-* at P L^2/EI = 35-80), or stall. The first step is predicted by the
+  /// change of the reference configuration.
+  ContinuationResult continuation(const MultipleShooting& ms) {
+    auto reference_at = [&](double lf) {
+      P_.set_load_factor(lf);
+      return ms.reference_guess();
+    };
     Continuation walk;
-    walk.correct = [this](double lf, const VectorXd& guess) {
+    walk.correct = [&](double lf, const VectorXd& guess) {
+      P_.set_load_factor(lf);
+      const NewtonResult r = ms.solve(guess, newton_options());
+      iterations_ += r.iterations;
       // A corrector whose line search cut steps may have left the branch: a shorter load step.
-      const NewtonResult r = solve_at(lf, guess);
       const bool on_branch = r.converged && r.backtracks == 0;
       return CorrectorResult{on_branch, r.x, r.residual_norm,
-                             r.converged && !on_branch ? "the corrector's line search cut steps" : r.reason};
+                             r.converged && !on_branch ? "the corrector's line search cut steps"
+                                                       : r.reason};
     };
-    walk.first_predictor = [this](double from, double to, const VectorXd& x) {
-      return VectorXd(x + rigid_guess(to) - rigid_guess(from));
+    walk.first_predictor = [&](double from, double to, const VectorXd& x) {
+      return VectorXd(x + reference_at(to) - reference_at(from));
     };
-    return continue_load(walk, rigid_guess(0.0));
+    return continue_load(walk, reference_at(0.0));
   }
 
   StaticProblem P_;

@@ -10,15 +10,17 @@
 #include "rodlab/solvers/statics/shooting.hpp"
 #include "statics_support.hpp"
 
-// Multiple shooting, the shooting schemes' last resort (multiple_shooting.hpp):
+// Multiple shooting, the shooting schemes' corrector for hard problems (multiple_shooting.hpp):
 // 1. its intervals march the single march's steps: chained from the single march's nodes they
 //    reproduce it bit for bit, across a cable entering at an interval start and breakpoints
 //    inside intervals (reference: shoot());
-// 2. it solves the scheme's own discrete equations: on an actuated rod with two extra unknowns
+// 2. its interval-by-interval Jacobian is the Jacobian of its residual (reference: forward
+//    differences of the whole residual);
+// 3. it solves the scheme's own discrete equations: on an actuated rod with two extra unknowns
 //    its nodes equal single shooting's to the Newton tolerance (reference: single shooting);
-// 3. it solves the constant-twist load with large shear that single shooting and its load
-//    continuation cannot (tests/statics/test_statics_robustness.cpp; reference: the closed
-//    form g(s) = exp(s xi), exact for every RKMK scheme).
+// 4. it solves the constant-twist load with large shear from the reference configuration,
+//    where single shooting's Newton finds no descent (tests/statics/test_statics_robustness.cpp;
+//    reference: the closed form g(s) = exp(s xi), exact for every RKMK scheme).
 
 namespace {
 
@@ -91,6 +93,33 @@ BOOST_AUTO_TEST_CASE(spans_chained_reproduce_the_single_march) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(interval_jacobian_is_the_residuals) {
+  for (const RkmkMethod method : kMethods) {
+    StaticProblem P = actuated_problem();
+    const MultipleShooting ms(P, method, kNodes);
+    // A state off the solution: the reference configuration, moved in every unknown.
+    Eigen::VectorXd x = ms.reference_guess();
+    for (int j = 0; j < x.size(); ++j) x[j] += 0.01 * std::sin(1.0 + j);
+    Eigen::VectorXd r;
+    BOOST_TEST_REQUIRE(ms.residual(x, r));
+    Eigen::MatrixXd J, reference(x.size(), x.size());
+    BOOST_TEST_REQUIRE(ms.jacobian(x, r, J, 1e-7));
+    for (int j = 0; j < x.size(); ++j) {  // central differences of the whole residual
+      const double h = 1e-6;
+      Eigen::VectorXd xp = x, xm = x, rp, rm;
+      xp[j] += h;
+      xm[j] -= h;
+      BOOST_TEST_REQUIRE(ms.residual(xp, rp));
+      BOOST_TEST_REQUIRE(ms.residual(xm, rm));
+      reference.col(j) = (rp - rm) / (2 * h);
+    }
+    const double e = (J - reference).lpNorm<Eigen::Infinity>() / reference.lpNorm<Eigen::Infinity>();
+    BOOST_TEST_MESSAGE("method " << static_cast<int>(method) << ": " << x.size()
+                                 << " unknowns, Jacobian error " << e);
+    BOOST_TEST(e <= 1e-5);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(solves_the_schemes_own_equations) {
   for (const RkmkMethod method : kMethods) {
     StaticProblem P = actuated_problem();
@@ -101,17 +130,20 @@ BOOST_AUTO_TEST_CASE(solves_the_schemes_own_equations) {
     BOOST_TEST_REQUIRE(reference.converged, reference.reason);
     NewtonOptions newton;
     newton.tol = 1e-12;
-    const MultipleShootingResult ms = solve_multiple_shooting(P, method, kNodes, newton);
-    BOOST_TEST_REQUIRE(ms.newton.converged, ms.newton.reason);
-    BOOST_TEST(ms.newton.iterations <= 20);
+    const MultipleShooting ms(P, method, kNodes);
+    const NewtonResult solved = ms.solve(ms.reference_guess(), newton);
+    BOOST_TEST_REQUIRE(solved.converged, solved.reason);
+    BOOST_TEST(solved.iterations <= 20);
+    std::vector<Node> nodes;
+    BOOST_TEST_REQUIRE(ms.path(solved.x, nodes));
     // The result shooting would write from these nodes (P holds multiple shooting's unknowns).
     std::vector<double> s(kNodes);
     std::vector<SE3> g(kNodes);
     std::vector<Vector6> Lambda(kNodes);
     for (int i = 0; i < kNodes; ++i) {
       s[i] = kL * i / (kNodes - 1);
-      g[i] = ms.path[i].g;
-      Lambda[i] = ms.path[i].Lambda;
+      g[i] = nodes[i].g;
+      Lambda[i] = nodes[i].Lambda;
     }
     result::StaticResult found;
     fill_static_result(P, s, g, Lambda, found);
@@ -124,7 +156,7 @@ BOOST_AUTO_TEST_CASE(solves_the_schemes_own_equations) {
     const double wrench = (found.base_wrench - reference.base_wrench)
                               .cwiseQuotient(P.wrench_scale())
                               .lpNorm<Eigen::Infinity>();
-    BOOST_TEST_MESSAGE("method " << static_cast<int>(method) << ": " << ms.newton.iterations
+    BOOST_TEST_MESSAGE("method " << static_cast<int>(method) << ": " << solved.iterations
                                  << " iterations, node pose " << pose << ", twist L " << twist
                                  << ", base wrench " << wrench);
     BOOST_TEST(pose <= 1e-10);
@@ -153,14 +185,18 @@ BOOST_AUTO_TEST_CASE(solves_where_single_shooting_cannot) {
     BOOST_TEST(!direct.converged, "single shooting now converges at N = " << nodes);
     NewtonOptions newton;
     newton.tol = 1e-12;
-    const auto ms = solve_multiple_shooting(P, RkmkMethod::euler_explicit, nodes, newton);
-    BOOST_TEST_REQUIRE(ms.newton.converged, ms.newton.reason);
+    const MultipleShooting ms(P, RkmkMethod::euler_explicit, nodes);
+    const NewtonResult solved = ms.solve(ms.reference_guess(), newton);
+    BOOST_TEST_REQUIRE(solved.converged, solved.reason);
+    std::vector<Node> path;
+    BOOST_TEST_REQUIRE(ms.path(solved.x, path));
     double e = 0.0;
     for (int i = 0; i < nodes; ++i) {
       const double s = kL * i / (nodes - 1);
-      e = std::max(e, pose_error(ms.path[i].g, expm_reference(s * xi)).max());
+      e = std::max(e, pose_error(path[i].g, expm_reference(s * xi)).max());
     }
-    BOOST_TEST_MESSAGE("N = " << nodes << ": " << ms.newton.iterations << " iterations, node error " << e);
+    BOOST_TEST_MESSAGE("N = " << nodes << ": " << solved.iterations << " iterations, node error "
+                              << e);
     BOOST_TEST(e <= 1e-9);
     // The whole shooting scheme: direct, continuation, then multiple shooting.
     const auto r = rodlab::testing::statics::solve(P, "rkmk-euler-explicit", nodes);

@@ -20,6 +20,11 @@ struct NewtonOptions {
   /// Optional cheaper approximation of F used only for the finite-difference Jacobian (e.g. a
   /// coarse discretisation of the same equations); Broyden updates then correct it.
   Residual jacobian_residual;
+  /// Optional Jacobian of F at x (F = F(x) given), instead of forward differences of F: e.g.
+  /// one that knows which unknowns each residual depends on (multiple_shooting.hpp). False
+  /// where it cannot be evaluated. Broyden updates it as they would the finite differences.
+  std::function<bool(const Eigen::VectorXd& x, const Eigen::VectorXd& F, Eigen::MatrixXd& J)>
+      jacobian;
 };
 
 struct NewtonResult {

@@ -1,8 +1,9 @@
 #pragma once
 // Single shooting for the statics BVP with an RKMK integrator: Newton on the base internal
 // wrench Lambda(0) so that the tip conditions hold, started from the equilibrium of the
-// undeformed rod (exact to first order in the loads), with load continuation when the direct
-// solve fails.
+// undeformed rod (exact to first order in the loads). When that direct solve fails or is not
+// trusted, a load continuation by multiple shooting of the same equations
+// (multiple_shooting.hpp), and multiple shooting at the full load as the last resort.
 #include <optional>
 #include <span>
 #include <vector>
