@@ -208,8 +208,8 @@ ShootResult shoot_span(const StaticProblem& problem, RkmkMethod method, int node
   return out;
 }
 
-ShootResult shoot(const StaticProblem& problem, RkmkMethod method, int nodes, const Vector6& Lambda0,
-                  std::span<Node> path) {
+ShootResult shoot(const StaticProblem& problem, RkmkMethod method, int nodes,
+                  const Vector6& Lambda0, std::span<Node> path) {
   return shoot_span(problem, method, nodes, 0, nodes - 1, Node{problem.base(), Lambda0}, path);
 }
 

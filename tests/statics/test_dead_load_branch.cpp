@@ -9,9 +9,9 @@
 // the branch from the unloaded rod) fixed that; but with single shooting as its corrector the
 // continuation still reached folded branches through clean steps (rkmk-midpoint-explicit and
 // -implicit at P L^2/EI = 30-80 and N = 25-200: tips 0.044-0.089 m off) or stalled
-// (rkmk-euler-implicit at 41-80, rkmk-rk4 at 60-80, rkmk-midpoint-implicit at 80). Since session 31 its corrector is multiple
-// shooting, and every shooting scheme stays on the stable branch up to 80 at N = 50 and 100;
-// chebyshev (its load continuation) converges there too.
+// (rkmk-euler-implicit at 41-80, rkmk-rk4 at 60-80, rkmk-midpoint-implicit at 80). Since
+// session 31 its corrector is multiple shooting, and every shooting scheme stays on the stable
+// branch up to 80 at N = 50 and 100; chebyshev (its load continuation) converges there too.
 // Reference: the `kinsol` collocation (order 4, same rule) at N = 100; the tolerance is the
 // scheme's own discretisation error at N = 50, measured on the stable branch at P L^2/EI = 10:
 // Euler ~1e-3 m, midpoint ~3e-5 m, rk4 < 1e-7 m (the folded branches are 0.04-0.09 m away).
@@ -42,16 +42,16 @@ BOOST_AUTO_TEST_CASE(dead_tip_force_stays_on_the_stable_branch) {
     for (const auto& s : statics_schemes_under_test()) {
       if (s.name == "kinsol") continue;  // the reference
       for (const int N : grid_for(s, {50, 100})) {
-      const StaticResult r = solve(problem, s.name, N);
-      const Vector3 tip = r.centerline.back().pose.translation();
-      BOOST_TEST_CONTEXT("P L^2/EI = " << PL2_EI << ", " << s.name << ", N = " << N) {
-        BOOST_TEST_MESSAGE("P L^2/EI = " << PL2_EI << " " << s.name << " N = " << N << ": tip "
-                                         << tip.transpose() << " (kinsol " << tip_ref.transpose()
-                                         << "), |error| " << (tip - tip_ref).norm() << ", "
-                                         << r.iterations << " iterations");
-        BOOST_TEST(r.converged);
-        BOOST_TEST((tip - tip_ref).norm() <= tolerance(s));
-      }
+        const StaticResult r = solve(problem, s.name, N);
+        const Vector3 tip = r.centerline.back().pose.translation();
+        BOOST_TEST_CONTEXT("P L^2/EI = " << PL2_EI << ", " << s.name << ", N = " << N) {
+          BOOST_TEST_MESSAGE("P L^2/EI = " << PL2_EI << " " << s.name << " N = " << N << ": tip "
+                                           << tip.transpose() << " (kinsol " << tip_ref.transpose()
+                                           << "), |error| " << (tip - tip_ref).norm() << ", "
+                                           << r.iterations << " iterations");
+          BOOST_TEST(r.converged);
+          BOOST_TEST((tip - tip_ref).norm() <= tolerance(s));
+        }
       }
     }
   }

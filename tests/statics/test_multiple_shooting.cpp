@@ -32,6 +32,7 @@ using rodlab::testing::actuators::straight;
 using rodlab::testing::statics::ad_matrix;
 using rodlab::testing::statics::expm_reference;
 using rodlab::testing::statics::pose_error;
+using rodlab::testing::statics::PoseError;
 using rodlab::testing::statics::Table21;
 
 const RkmkMethod kMethods[] = {RkmkMethod::euler_explicit, RkmkMethod::euler_implicit,
@@ -113,7 +114,8 @@ BOOST_AUTO_TEST_CASE(interval_jacobian_is_the_residuals) {
       BOOST_TEST_REQUIRE(ms.residual(xm, rm));
       reference.col(j) = (rp - rm) / (2 * h);
     }
-    const double e = (J - reference).lpNorm<Eigen::Infinity>() / reference.lpNorm<Eigen::Infinity>();
+    const double e =
+        (J - reference).lpNorm<Eigen::Infinity>() / reference.lpNorm<Eigen::Infinity>();
     BOOST_TEST_MESSAGE("method " << static_cast<int>(method) << ": " << x.size()
                                  << " unknowns, Jacobian error " << e);
     BOOST_TEST(e <= 1e-5);
@@ -149,7 +151,8 @@ BOOST_AUTO_TEST_CASE(solves_the_schemes_own_equations) {
     fill_static_result(P, s, g, Lambda, found);
     double pose = 0.0, twist = 0.0;
     for (int i = 0; i < kNodes; ++i) {
-      pose = std::max(pose, pose_error(found.centerline[i].pose, reference.centerline[i].pose, kL).max());
+      const PoseError d = pose_error(found.centerline[i].pose, reference.centerline[i].pose, kL);
+      pose = std::max(pose, d.max());
       twist = std::max(twist, kL * (found.centerline[i].twist - reference.centerline[i].twist)
                                        .lpNorm<Eigen::Infinity>());
     }
