@@ -69,12 +69,17 @@ class ShootingNewton {
     valid_ = false;
   }
 
-  /// Solves shoot(x) = 0 to |r|_inf <= tol within max_shots integrations. `shoot` maps the
-  /// unknowns to the residual and leaves the profiles of its argument behind, so on success the
-  /// last call was at the solution. `c` keys the Jacobian's reuse; `extrapolate` turns the
-  /// linear predictor on (from the third step: two previous solutions exist).
+  /// Solves shoot(x) = 0 to |r|_inf <= tol within max_iterations Newton steps (solver.
+  /// max_iterations; a step's backtracking and the Jacobians' columns are not counted: a
+  /// Jacobian costs n + 1 integrations, so a budget of integrations ran out after a handful of
+  /// Jacobians with actuator unknowns, e.g. the muscle switched on in scenes/muscle-dynamics.yaml
+  /// at dt = 2 ms). `shoot` maps the unknowns to the residual and leaves the profiles of its
+  /// argument behind, so on success the last call was at the solution. `c` keys the Jacobian's
+  /// reuse; `extrapolate` turns the linear predictor on (from the third step: two previous
+  /// solutions exist).
   template <class Shoot>
-  ShootingOutcome solve(Shoot&& shoot, double c, bool extrapolate, double tol, int max_shots) {
+  ShootingOutcome solve(Shoot&& shoot, double c, bool extrapolate, double tol,
+                        int max_iterations) {
     ShootingOutcome out;
     Vec x = extrapolate ? Vec(2.0 * prev_ - prev2_) : prev_;
     Vec r = shoot(x);
@@ -87,10 +92,11 @@ class ShootingNewton {
     }
     bool fresh = false;
     int slow_steps = 0;  // slow Broyden steps kept in a row (far from the solution)
+    int iterations = 0;  // Newton steps taken
     auto norm = [](const Vec& v) { return v.template lpNorm<Eigen::Infinity>(); };
     while (!(norm(r) <= tol)) {
       check_deadline();  // the run's wall-time guard (common/deadline.hpp)
-      if (out.shots >= max_shots || !r.allFinite()) {
+      if (iterations >= max_iterations || !r.allFinite()) {
         out.failure =
             rodlab::format("single shooting did not converge (tip residual {:g})", norm(r));
         return out;
@@ -132,6 +138,7 @@ class ShootingNewton {
             norm(r));
         return out;
       }
+      ++iterations;
       // Broyden's rank-one update of the secant model.
       J_ += ((r_new - r) - J_ * step) * step.transpose() / step.squaredNorm();
       x += step;
