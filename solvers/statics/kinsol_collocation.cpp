@@ -613,15 +613,17 @@ class Driver {
     kinsol_.max_setup_calls = 3;
   }
 
-  /// One KINSOL run (line search) at a load factor, with at most max_iterations if > 0.
-  /// KIN_STEP_LT_STPTOL (no further progress) or KIN_LINESEARCH_NONCONV (no descent) at a
-  /// residual on the rounding floor of the rows counts as converged: a tolerance below that floor
-  /// cannot be met by any iterate (N = 200, tol 1e-12 under a dead load of P L^2/EI = 41 stalled
-  /// the continuation at load factor 0.81 by line search failures at 3e-12; test_dead_load_branch).
-  KinsolStats solve_at(double load_factor, VectorXd& x, int max_iterations = 0) {
+  /// One KINSOL run (line search) at a load factor, with at most max_iterations if > 0, to the
+  /// tolerance `tol` if > 0 (else the options'). A stop (KIN_STEP_LT_STPTOL: no further progress,
+  /// KIN_LINESEARCH_NONCONV: no descent, KIN_MAXITER_REACHED) at a residual on the rounding floor
+  /// of the rows counts as converged: a tolerance below that floor cannot be met by any iterate
+  /// (N = 200, tol 1e-12 under a dead load of P L^2/EI = 41 stalled the continuation at load
+  /// factor 0.81 by line search failures at 3e-12; test_dead_load_branch).
+  KinsolStats solve_at(double load_factor, VectorXd& x, int max_iterations = 0, double tol = 0.0) {
     C_.problem().set_load_factor(load_factor);
     KinsolOptions options = kinsol_;
     if (max_iterations > 0) options.max_iterations = std::min(max_iterations, options.max_iterations);
+    if (tol > 0.0) options.fnormtol = tol;
     KinsolStats stats = solver_.get().solve(
         x, [this](const ConstRef& u, Ref F) { C_.residual(u, F); },
         [this](const ConstRef& u, const ConstRef&, Sparse& J) { C_.jacobian(u, J); }, options);
@@ -632,7 +634,8 @@ class Driver {
     report_.backtracks += stats.backtracks;
     report_.flag = stats.flag_name;
     if (!stats.converged &&
-        (stats.flag_name == "KIN_STEP_LT_STPTOL" || stats.flag_name == "KIN_LINESEARCH_NONCONV") &&
+        (stats.flag_name == "KIN_STEP_LT_STPTOL" || stats.flag_name == "KIN_LINESEARCH_NONCONV" ||
+         stats.flag_name == "KIN_MAXITER_REACHED") &&
         residual_norm(x) <= std::max(options.fnormtol, C_.rounding_floor(x)))
       stats.converged = true;
     return stats;
@@ -705,13 +708,19 @@ class Driver {
   static std::string describe(const KinsolStats& s) { return s.flag_name; }
 
   /// Load continuation through the shared driver (continuation.hpp): from load factor 0, where
-  /// the initial guess is exact, to 1; each corrector is a KINSOL solve with the line search.
+  /// the initial guess is exact, to 1; each corrector is a KINSOL solve with the line search, to
+  /// the walk's tolerance (kWalkTol, or the solve's if looser), and the solution at load factor
+  /// 1 is then polished to the solve's tolerance. A walk to a tolerance near the rows' rounding
+  /// level stalled: its correctors' line searches cut steps in the rounding noise, which the
+  /// walk takes for leaving the branch (a soft cantilever, E = 2500 Pa under gravity, N = 100,
+  /// tol 1e-12: stalled at load factor 0.30, correctors stopping at residuals of 1.1-2.4e-12).
   bool continuation(VectorXd& x, std::string& why) {
+    const double walk_tol = std::max(kinsol_.fnormtol, kWalkTol);
     Continuation walk;
-    walk.correct = [this](double lf, const VectorXd& guess) {
+    walk.correct = [this, walk_tol](double lf, const VectorXd& guess) {
       CorrectorResult r;
       r.state = guess;
-      const KinsolStats stats = solve_at(lf, r.state, kCorrectorIterations);
+      const KinsolStats stats = solve_at(lf, r.state, kCorrectorIterations, walk_tol);
       // A corrector that needs many iterations or cuts a step has left the branch's basin: the
       // step is halved instead (so the walk cannot jump to another branch).
       r.converged = stats.converged && stats.backtracks == 0;
@@ -725,7 +734,11 @@ class Driver {
     const ContinuationResult result = continue_load(walk, guess_at(0.0));
     x = result.state;
     why = result.reason;
-    return result.converged;
+    if (!result.converged || walk_tol <= kinsol_.fnormtol) return result.converged;
+    // Polish: Newton from a point on the branch within walk_tol stays on it.
+    const KinsolStats polish = solve_at(1.0, x);
+    if (!polish.converged) why = "polishing at load factor 1: " + describe(polish);
+    return polish.converged;
   }
 
   KinsolCollocationReport finish(const VectorXd& x, bool converged, const std::string& reason,
@@ -763,6 +776,7 @@ class Driver {
 
   static constexpr int kDirectIterations = 15;    // Newton inside its basin needs fewer
   static constexpr int kCorrectorIterations = 8;  // per continuation step
+  static constexpr double kWalkTol = 1e-9;         // the continuation's correctors, at least
 
   Collocation C_;
   KinsolCollocationOptions options_;

@@ -275,6 +275,31 @@ BOOST_AUTO_TEST_CASE(large_dead_tip_loads_follow_the_load_path) {
   }
 }
 
+// A soft cantilever at a tolerance near the rows' rounding level: E = 2500 Pa (G = 0.33 E, the
+// Table 2.1 geometry) under gravity, rho g A L^3 / E I = 157, N = 100, tol 1e-12. The direct solve
+// fails and the load continuation used to stall at load factor 0.30: its correctors, held to
+// 1e-12, stopped at residuals of 1.1-2.4e-12 with line-search cuts in the rounding noise, which
+// the walk takes for leaving the branch. The walk now corrects to 1e-9 and polishes the solution
+// at the full load (kinsol_collocation.cpp). Reference: rkmk-rk4 at N = 1601 (measured: 1.5e-7 m,
+// kinsol's own error at N = 100, which is fourth order).
+BOOST_AUTO_TEST_CASE(soft_cantilever_at_a_tight_tolerance) {
+  StaticProblem P(rod::RodModel(kL, rod::Circle{0.01}, rod::Material{2500.0, 825.0, 1000.0, 0.0},
+                                rod::ModelKind::cosserat),
+                  SE3::identity());
+  P.set_gravity(loads::Gravity(P.model(), Vector3(-9.81, 0.0, 0.0)));
+  const auto k = kinsol(P, 100, 1e-12);
+  BOOST_TEST_REQUIRE(k.result.converged, k.result.reason);
+  BOOST_TEST(k.strategy == "continuation");
+  check_structure(k);
+  const double error = (tip_position(k.result) - tip_position(rk4_reference(P))).norm();
+  BOOST_TEST_MESSAGE("soft cantilever: tip " << tip_position(k.result).transpose() << ", residual "
+                                             << k.result.residual_norm << ", error against rk4 "
+                                             << error << " m, " << k.nonlinear_iterations
+                                             << " iterations");
+  BOOST_TEST(k.result.residual_norm <= 1e-10);  // at the rounding floor, not the tolerance
+  BOOST_TEST(error <= 5e-6);
+}
+
 // The solver kept on a thread between solves of the same pattern (kinsol_collocation.cpp,
 // ThreadSolver: its SUNDIALS objects and KLU's analysis) does not carry one solve's pivots into
 // the next: the gravity cantilever at N = 100 after a solve of another size and a continuation

@@ -3,8 +3,8 @@
 // and closed forms: observed order on the gravity cantilever against a fine rkmk-rk4 reference,
 // convergence of both-ends-fixed (thesis 2.7.2, where its implicit midpoint failed at N = 15),
 // the full circle of a tip moment, a straight cable's constant curvature, the stable branch of
-// a large dead load, agreement between the reference schemes, and det R / R^T R drift in every solve. One named function per case, run in
-// the order of kCases.
+// a large dead load, agreement between the reference schemes, and det R / R^T R drift in every
+// solve. One named function per case, run in the order of kCases.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
