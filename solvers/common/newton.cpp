@@ -94,7 +94,7 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
       }
     }
     if (!accepted) {
-      if (J_is_fd) return finish(false, "line search failed to reduce the residual");
+      if (J_is_fd) return finish(false, kLineSearchFailed);
       have_J = false;  // a stale Broyden Jacobian: refresh it and retry from the same x
       continue;
     }

@@ -708,19 +708,36 @@ class Driver {
   static std::string describe(const KinsolStats& s) { return s.flag_name; }
 
   /// Load continuation through the shared driver (continuation.hpp): from load factor 0, where
-  /// the initial guess is exact, to 1; each corrector is a KINSOL solve with the line search, to
-  /// the walk's tolerance (kWalkTol, or the solve's if looser), and the solution at load factor
-  /// 1 is then polished to the solve's tolerance. A walk to a tolerance near the rows' rounding
-  /// level stalled: its correctors' line searches cut steps in the rounding noise, which the
-  /// walk takes for leaving the branch (a soft cantilever, E = 2500 Pa under gravity, N = 100,
-  /// tol 1e-12: stalled at load factor 0.30, correctors stopping at residuals of 1.1-2.4e-12).
+  /// the initial guess is exact, to 1; each corrector is a KINSOL solve with the line search. A
+  /// walk that fails at a tolerance below kWalkTol is walked again with its correctors solving
+  /// to kWalkTol, and its solution is polished at the full load to the solve's tolerance: a
+  /// walk to a tolerance near the rows' rounding level stalled, its correctors' line searches
+  /// cutting steps in the rounding noise, which the walk takes for leaving the branch (a soft
+  /// cantilever, E = 2500 Pa under gravity, N = 100, tol 1e-12: stalled at load factor 0.30,
+  /// correctors stopping at residuals of 1.1-2.4e-12; test_kinsol).
   bool continuation(VectorXd& x, std::string& why) {
-    const double walk_tol = std::max(kinsol_.fnormtol, kWalkTol);
+    const bool walked = walk(kinsol_.fnormtol, x, why);
+    if (walked || kinsol_.fnormtol >= kWalkTol) return walked;
+    std::string loose_why;
+    if (!walk(kWalkTol, x, loose_why)) {
+      why += "; walked to " + rodlab::format("{:g}", kWalkTol) + ": " + loose_why;
+      return false;
+    }
+    // Polish: Newton from a point on the branch within kWalkTol stays on it.
+    const KinsolStats polish = solve_at(1.0, x);
+    if (!polish.converged)
+      why += "; walked to " + rodlab::format("{:g}", kWalkTol) +
+             ", then polishing at load factor 1: " + describe(polish);
+    return polish.converged;
+  }
+
+  /// One walk whose correctors solve to `tol` (at most kCorrectorIterations each).
+  bool walk(double tol, VectorXd& x, std::string& why) {
     Continuation walk;
-    walk.correct = [this, walk_tol](double lf, const VectorXd& guess) {
+    walk.correct = [this, tol](double lf, const VectorXd& guess) {
       CorrectorResult r;
       r.state = guess;
-      const KinsolStats stats = solve_at(lf, r.state, kCorrectorIterations, walk_tol);
+      const KinsolStats stats = solve_at(lf, r.state, kCorrectorIterations, tol);
       // A corrector that needs many iterations or cuts a step has left the branch's basin: the
       // step is halved instead (so the walk cannot jump to another branch).
       r.converged = stats.converged && stats.backtracks == 0;
@@ -734,11 +751,7 @@ class Driver {
     const ContinuationResult result = continue_load(walk, guess_at(0.0));
     x = result.state;
     why = result.reason;
-    if (!result.converged || walk_tol <= kinsol_.fnormtol) return result.converged;
-    // Polish: Newton from a point on the branch within walk_tol stays on it.
-    const KinsolStats polish = solve_at(1.0, x);
-    if (!polish.converged) why = "polishing at load factor 1: " + describe(polish);
-    return polish.converged;
+    return result.converged;
   }
 
   KinsolCollocationReport finish(const VectorXd& x, bool converged, const std::string& reason,
@@ -776,7 +789,7 @@ class Driver {
 
   static constexpr int kDirectIterations = 15;    // Newton inside its basin needs fewer
   static constexpr int kCorrectorIterations = 8;  // per continuation step
-  static constexpr double kWalkTol = 1e-9;         // the continuation's correctors, at least
+  static constexpr double kWalkTol = 1e-9;         // a second walk's correctors
 
   Collocation C_;
   KinsolCollocationOptions options_;

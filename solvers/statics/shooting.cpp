@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "rodlab/check.hpp"
 #include "rodlab/solvers/common/newton.hpp"
 #include "rodlab/solvers/statics/continuation.hpp"
 #include "rodlab/solvers/statics/multiple_shooting.hpp"
@@ -14,6 +15,12 @@ namespace {
 /// A direct Newton solve that needs more iterations than this (from the rigid-rod guess, ordinary
 /// loads take 3-8) is checked by the load continuation, as one whose line search cut steps.
 constexpr int kTrustedDirectIterations = 10;
+
+/// A load continuation that fails at a tighter tolerance is walked again with its correctors
+/// solving to this one, and the solution at the full load polished to the solve's: correctors
+/// held to a tolerance near the rounding level cut line-search steps in the noise, which the
+/// walk takes for leaving the branch (kinsol_collocation.cpp has the same rule).
+constexpr double kWalkTol = 1e-9;
 
 using Eigen::VectorXd;
 
@@ -137,7 +144,7 @@ class ShootingSolver {
     // converged, multiple shooting at the full load.
     const bool own_start = options_.base_wrench_guess.has_value();
     std::vector<Node> path(options_.nodes);
-    bool marched = false;  // path holds the continuation's solution
+    bool marched = false;  // path holds the solution (or the best state) of multiple shooting
     if (!own_start &&
         (!converged || direct.backtracks > 0 || direct.iterations > kTrustedDirectIterations)) {
       MultipleShooting ms(P_, method_, options_.nodes);
@@ -149,18 +156,13 @@ class ShootingSolver {
         reason.clear();
       } else if (!converged) {
         reason = "direct Newton: " + reason + "; continuation: " + cont.reason;
-        // The last resort, as kinsol's: multiple shooting at the full load from the reference
-        // configuration (not held to the load path's branch). Measured: rkmk-euler-explicit at
-        // N = 5 under test_statics_robustness's large-shear constant twist, whose discrete load
-        // path stalls at load factor 0.54, reaches the closed form here.
-        const NewtonResult last = ms.solve(ms.reference_guess(), newton_options());
-        iterations_ += last.iterations;
-        if (last.converged && ms.path(last.x, path)) {
-          converged = marched = true;
-          residual = last.residual_norm;
-          reason.clear();
+        if (cont.load_factor == 1.0) {
+          // On the branch at the full load, short only of the tolerance (the polish failed):
+          // the result reports that state and its residual.
+          marched = ms.path(cont.state, path);
+          if (marched) residual = cont.residual_norm;
         } else {
-          reason += "; multiple shooting at the full load: " + last.reason;
+          marched = converged = last_resort(ms, path, residual, reason);
         }
       }
     }
@@ -188,6 +190,24 @@ class ShootingSolver {
   }
 
  private:
+  /// Multiple shooting at the full load from the reference configuration, as kinsol's last
+  /// step: not held to the load path's branch. Measured: rkmk-euler-explicit at N = 5 under
+  /// test_statics_robustness's large-shear constant twist, whose discrete load path stalls at
+  /// load factor 0.54, reaches the closed form here. On success writes the path and residual
+  /// and clears the reason; else adds to it.
+  bool last_resort(const MultipleShooting& ms, std::vector<Node>& path, double& residual,
+                   std::string& reason) {
+    const NewtonResult last = ms.solve(ms.reference_guess(), newton_options());
+    iterations_ += last.iterations;
+    if (last.converged && ms.path(last.x, path)) {
+      residual = last.residual_norm;
+      reason.clear();
+      return true;
+    }
+    reason += "; multiple shooting at the full load: " + last.reason;
+    return false;
+  }
+
   NewtonOptions newton_options() const {
     NewtonOptions newton;
     newton.tol = options_.tol;
@@ -202,17 +222,42 @@ class ShootingSolver {
   /// Walks the load factor from 0 (where the reference configuration solves exactly) to 1
   /// (continuation.hpp) with multiple shooting's corrector: single shooting's amplification
   /// made its correctors land on folded branches of large dead loads through clean steps
-  /// (rkmk-midpoint-* at P L^2/EI = 35-80), or stall. The first step is predicted by the
-  /// change of the reference configuration.
+  /// (rkmk-midpoint-* at P L^2/EI = 30-80), or stall. The first step is predicted by the
+  /// change of the reference configuration. A walk that fails at a tolerance below kWalkTol is
+  /// walked again to kWalkTol and its solution polished at the full load.
   ContinuationResult continuation(const MultipleShooting& ms) {
+    ContinuationResult result = walk(ms, options_.tol);
+    if (result.converged || options_.tol >= kWalkTol) return result;
+    ContinuationResult loose = walk(ms, kWalkTol);
+    if (!loose.converged) {
+      result.reason += "; walked to " + rodlab::format("{:g}", kWalkTol) + ": " + loose.reason;
+      return result;
+    }
+    // Polish: Newton from a point on the branch within kWalkTol stays on it.
+    P_.set_load_factor(1.0);
+    const NewtonResult polish = ms.solve(loose.state, newton_options());
+    iterations_ += polish.iterations;
+    loose.converged = polish.converged;
+    loose.state = polish.x;
+    loose.residual_norm = polish.residual_norm;
+    if (!polish.converged)
+      loose.reason = result.reason + "; walked to " + rodlab::format("{:g}", kWalkTol) +
+                     ", then polishing at load factor 1: " + polish.reason;
+    return loose;
+  }
+
+  /// One walk whose correctors solve to `tol`.
+  ContinuationResult walk(const MultipleShooting& ms, double tol) {
     auto reference_at = [&](double lf) {
       P_.set_load_factor(lf);
       return ms.reference_guess();
     };
+    NewtonOptions corrector = newton_options();
+    corrector.tol = tol;
     Continuation walk;
     walk.correct = [&](double lf, const VectorXd& guess) {
       P_.set_load_factor(lf);
-      const NewtonResult r = ms.solve(guess, newton_options());
+      const NewtonResult r = ms.solve(guess, corrector);
       iterations_ += r.iterations;
       // A corrector whose line search cut steps may have left the branch: a shorter load step.
       const bool on_branch = r.converged && r.backtracks == 0;

@@ -37,6 +37,10 @@ struct NewtonResult {
   std::string reason;           ///< why not, when not converged
 };
 
+/// NewtonResult::reason when a fresh Jacobian's step finds no descent (e.g. on the rounding
+/// floor of the residual).
+inline constexpr const char* kLineSearchFailed = "line search failed to reduce the residual";
+
 NewtonResult solve_newton(const Residual& F, Eigen::VectorXd x0, const NewtonOptions& options);
 
 }  // namespace rodlab::solvers
