@@ -280,8 +280,9 @@ BOOST_AUTO_TEST_CASE(large_dead_tip_loads_follow_the_load_path) {
 // fails and the load continuation used to stall at load factor 0.30: its correctors, held to
 // 1e-12, stopped at residuals of 1.1-2.4e-12 with line-search cuts in the rounding noise, which
 // the walk takes for leaving the branch. A failed walk is now walked again with its correctors
-// to 1e-9, and the solution polished at the full load (kinsol_collocation.cpp). Reference: rkmk-rk4 at N = 1601 (measured: 1.5e-7 m,
-// kinsol's own error at N = 100, which is fourth order).
+// to 1e-9, and the solution polished at the full load (kinsol_collocation.cpp). Reference:
+// rkmk-rk4 at N = 1601 (measured: 1.5e-7 m, kinsol's own error at N = 100, which is fourth
+// order).
 BOOST_AUTO_TEST_CASE(soft_cantilever_at_a_tight_tolerance) {
   StaticProblem P(rod::RodModel(kL, rod::Circle{0.01}, rod::Material{2500.0, 825.0, 1000.0, 0.0},
                                 rod::ModelKind::cosserat),
