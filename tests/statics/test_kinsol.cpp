@@ -276,7 +276,7 @@ BOOST_AUTO_TEST_CASE(large_dead_tip_loads_follow_the_load_path) {
 }
 
 // A soft cantilever at a tolerance near the rows' rounding level: E = 2500 Pa (G = 0.33 E, the
-// Table 2.1 geometry) under gravity, rho g A L^3 / E I = 157, N = 100, tol 1e-12. The direct solve
+// Table 2.1 geometry) under gravity, rho g A L^3 / E I = 628, N = 100, tol 1e-12. The direct solve
 // fails and the load continuation used to stall at load factor 0.30: its correctors, held to
 // 1e-12, stopped at residuals of 1.1-2.4e-12 with line-search cuts in the rounding noise, which
 // the walk takes for leaving the branch. A failed walk is now walked again with its correctors

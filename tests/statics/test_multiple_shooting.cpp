@@ -210,7 +210,7 @@ BOOST_AUTO_TEST_CASE(solves_where_single_shooting_cannot) {
 }
 
 BOOST_AUTO_TEST_CASE(soft_cantilever_at_a_tight_tolerance) {
-  // E = 1000 Pa (G = 0.33 E, the Table 2.1 geometry) under gravity: rho g A L^3 / E I = 157,
+  // E = 1000 Pa (G = 0.33 E, the Table 2.1 geometry) under gravity: rho g A L^3 / E I = 1570,
   // N = 100, tol 1e-12. The direct solve's march is not finite, and the walk held to 1e-12
   // stalled at load factor 0.86 (its correctors' line searches cut steps in the rounding noise,
   // which the walk takes for leaving the branch); the polish at the full load then stops on the
