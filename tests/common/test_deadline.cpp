@@ -49,8 +49,17 @@ BOOST_AUTO_TEST_CASE(scopes_nest_and_restore) {
 
 namespace {
 
+/// The bound on a stopped solve's wall time: 3 s; under AddressSanitizer (-DRODLAB_SANITIZE=ON,
+/// -O1) the element factorisations between two deadline checks run about five times slower
+/// (N = 800 stopped after 3.7 s there), so 15 s.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr double kStopBound = 15.0;
+#else
+constexpr double kStopBound = 3.0;
+#endif
+
 /// chebyshev on a very soft rod (E = 1e3 Pa) at N nodes under a 0.3 s limit: reported as not
-/// converged, naming the limit, within 3 s of wall time.
+/// converged, naming the limit, within kStopBound of wall time.
 void expect_chebyshev_stops_at_the_limit(int nodes) {
   solvers::statics::StaticSolveOptions o;
   o.scheme = "chebyshev";
@@ -61,7 +70,7 @@ void expect_chebyshev_stops_at_the_limit(int nodes) {
   const double wall = seconds_since(start);
   BOOST_TEST(!r.converged, "N = " << nodes);
   BOOST_TEST(r.reason.find("wall-time limit of 0.3 s") != std::string::npos, r.reason);
-  BOOST_TEST(wall < 3.0, "N = " << nodes);
+  BOOST_TEST(wall < kStopBound, "N = " << nodes << ": " << wall << " s");
 }
 
 }  // namespace
