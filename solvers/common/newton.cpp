@@ -94,7 +94,12 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
       }
     }
     if (!accepted) {
-      if (J_is_fd) return finish(false, kLineSearchFailed);
+      if (J_is_fd) {
+        if (options.rounding_floor &&
+            out.F.lpNorm<Eigen::Infinity>() <= options.rounding_floor(out.x))
+          return finish(true, "");
+        return finish(false, "line search failed to reduce the residual");
+      }
       have_J = false;  // a stale Broyden Jacobian: refresh it and retry from the same x
       continue;
     }

@@ -46,4 +46,25 @@ ContinuationResult continue_load(const Continuation& walk, Eigen::VectorXd start
   return finish(true, last.reason);
 }
 
+ContinuationResult continue_load_to(
+    double tol, const std::function<Continuation(double corrector_tol)>& walk_at,
+    const Eigen::VectorXd& start,
+    const std::function<CorrectorResult(const Eigen::VectorXd& state)>& polish) {
+  ContinuationResult first = continue_load(walk_at(tol), start);
+  if (first.converged || tol >= kWalkTol) return first;
+  ContinuationResult loose = continue_load(walk_at(kWalkTol), start);
+  const std::string walked = "; walked to " + rodlab::format("{:g}", kWalkTol);
+  if (!loose.converged) {
+    first.reason += walked + ": " + loose.reason;
+    return first;
+  }
+  const CorrectorResult polished = polish(loose.state);
+  loose.converged = polished.converged;
+  loose.state = polished.state;
+  loose.residual_norm = polished.residual_norm;
+  if (!polished.converged)
+    loose.reason = first.reason + walked + ", then polishing at load factor 1: " + polished.reason;
+  return loose;
+}
+
 }  // namespace rodlab::solvers::statics

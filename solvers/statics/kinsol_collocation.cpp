@@ -708,47 +708,41 @@ class Driver {
   static std::string describe(const KinsolStats& s) { return s.flag_name; }
 
   /// Load continuation through the shared driver (continuation.hpp): from load factor 0, where
-  /// the initial guess is exact, to 1; each corrector is a KINSOL solve with the line search. A
-  /// walk that fails at a tolerance below kWalkTol is walked again with its correctors solving
-  /// to kWalkTol, and its solution is polished at the full load to the solve's tolerance: a
-  /// walk to a tolerance near the rows' rounding level stalled, its correctors' line searches
-  /// cutting steps in the rounding noise, which the walk takes for leaving the branch (a soft
-  /// cantilever, E = 2500 Pa under gravity, N = 100, tol 1e-12: stalled at load factor 0.30,
-  /// correctors stopping at residuals of 1.1-2.4e-12; test_kinsol).
+  /// the initial guess is exact, to 1; each corrector is a KINSOL solve with the line search
+  /// (at most kCorrectorIterations). A walk that fails below kWalkTol is walked again to it and
+  /// polished (continue_load_to): a soft cantilever, E = 2500 Pa under gravity, N = 100, tol
+  /// 1e-12, stalled at load factor 0.30, its correctors stopping at residuals of 1.1-2.4e-12
+  /// with line-search cuts in the rounding noise (test_kinsol).
   bool continuation(VectorXd& x, std::string& why) {
-    const bool walked = walk(kinsol_.fnormtol, x, why);
-    if (walked || kinsol_.fnormtol >= kWalkTol) return walked;
-    std::string loose_why;
-    if (!walk(kWalkTol, x, loose_why)) {
-      why += "; walked to " + rodlab::format("{:g}", kWalkTol) + ": " + loose_why;
-      return false;
-    }
-    // Polish: Newton from a point on the branch within kWalkTol stays on it.
-    const KinsolStats polish = solve_at(1.0, x);
-    if (!polish.converged)
-      why += "; walked to " + rodlab::format("{:g}", kWalkTol) +
-             ", then polishing at load factor 1: " + describe(polish);
-    return polish.converged;
-  }
-
-  /// One walk whose correctors solve to `tol` (at most kCorrectorIterations each).
-  bool walk(double tol, VectorXd& x, std::string& why) {
-    Continuation walk;
-    walk.correct = [this, tol](double lf, const VectorXd& guess) {
+    auto walk_at = [this](double tol) {
+      Continuation walk;
+      walk.correct = [this, tol](double lf, const VectorXd& guess) {
+        CorrectorResult r;
+        r.state = guess;
+        const KinsolStats stats = solve_at(lf, r.state, kCorrectorIterations, tol);
+        // A corrector that needs many iterations or cuts a step has left the branch's basin:
+        // the step is halved instead (so the walk cannot jump to another branch).
+        r.converged = stats.converged && stats.backtracks == 0;
+        r.reason = describe(stats);
+        r.residual_norm = residual_norm(r.state);
+        return r;
+      };
+      walk.first_predictor = [this](double from, double to, const VectorXd& state) {
+        return VectorXd(state + guess_at(to) - guess_at(from));
+      };
+      return walk;
+    };
+    auto polish = [this](const VectorXd& state) {
       CorrectorResult r;
-      r.state = guess;
-      const KinsolStats stats = solve_at(lf, r.state, kCorrectorIterations, tol);
-      // A corrector that needs many iterations or cuts a step has left the branch's basin: the
-      // step is halved instead (so the walk cannot jump to another branch).
-      r.converged = stats.converged && stats.backtracks == 0;
+      r.state = state;
+      const KinsolStats stats = solve_at(1.0, r.state);
+      r.converged = stats.converged;
       r.reason = describe(stats);
       r.residual_norm = residual_norm(r.state);
       return r;
     };
-    walk.first_predictor = [this](double from, double to, const VectorXd& state) {
-      return VectorXd(state + guess_at(to) - guess_at(from));
-    };
-    const ContinuationResult result = continue_load(walk, guess_at(0.0));
+    const ContinuationResult result =
+        continue_load_to(kinsol_.fnormtol, walk_at, guess_at(0.0), polish);
     x = result.state;
     why = result.reason;
     return result.converged;
@@ -789,7 +783,6 @@ class Driver {
 
   static constexpr int kDirectIterations = 15;    // Newton inside its basin needs fewer
   static constexpr int kCorrectorIterations = 8;  // per continuation step
-  static constexpr double kWalkTol = 1e-9;         // a second walk's correctors
 
   Collocation C_;
   KinsolCollocationOptions options_;

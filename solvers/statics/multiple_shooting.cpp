@@ -154,19 +154,16 @@ NewtonResult MultipleShooting::solve(const VectorXd& guess, NewtonOptions option
                                                     MatrixXd& J) {
     return jacobian(x, F, J, step);
   };
+  // The rounding level of the rows, differences of unknowns of size |x| (as kinsol's rule; a
+  // soft cantilever, E = 1000 Pa under gravity, N = 100, stops at 1.6e-12 against a tolerance of
+  // 1e-12 with |x| ~ 1.6e3).
+  options.rounding_floor = [](const VectorXd& x) {
+    return 64.0 * std::numeric_limits<double>::epsilon() *
+           std::max(1.0, x.lpNorm<Eigen::Infinity>());
+  };
   const Residual F = [this](const VectorXd& x, VectorXd& r) { return residual(x, r); };
   NewtonResult out = solve_newton(F, guess, options);
   set_extras(out.x);
-  // A residual on the rounding floor of the rows (differences of unknowns of size |x|) counts as
-  // converged when the line search finds no descent there: a tolerance below that floor cannot
-  // be met (as kinsol's rule; a soft cantilever, E = 1000 Pa under gravity, N = 100, stops at
-  // 1.6e-12 against a tolerance of 1e-12 with |x| ~ 1.6e3).
-  const double floor = 64.0 * std::numeric_limits<double>::epsilon() *
-                       std::max(1.0, out.x.lpNorm<Eigen::Infinity>());
-  if (!out.converged && out.reason == kLineSearchFailed && out.residual_norm <= floor) {
-    out.converged = true;
-    out.reason.clear();
-  }
   return out;
 }
 

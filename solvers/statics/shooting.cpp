@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <vector>
 
-#include "rodlab/check.hpp"
 #include "rodlab/solvers/common/newton.hpp"
 #include "rodlab/solvers/statics/continuation.hpp"
 #include "rodlab/solvers/statics/multiple_shooting.hpp"
@@ -15,12 +14,6 @@ namespace {
 /// A direct Newton solve that needs more iterations than this (from the rigid-rod guess, ordinary
 /// loads take 3-8) is checked by the load continuation, as one whose line search cut steps.
 constexpr int kTrustedDirectIterations = 10;
-
-/// A load continuation that fails at a tighter tolerance is walked again with its correctors
-/// solving to this one, and the solution at the full load polished to the solve's: correctors
-/// held to a tolerance near the rounding level cut line-search steps in the noise, which the
-/// walk takes for leaving the branch (kinsol_collocation.cpp has the same rule).
-constexpr double kWalkTol = 1e-9;
 
 using Eigen::VectorXd;
 
@@ -223,52 +216,41 @@ class ShootingSolver {
   /// (continuation.hpp) with multiple shooting's corrector: single shooting's amplification
   /// made its correctors land on folded branches of large dead loads through clean steps
   /// (rkmk-midpoint-* at P L^2/EI = 30-80), or stall. The first step is predicted by the
-  /// change of the reference configuration. A walk that fails at a tolerance below kWalkTol is
-  /// walked again to kWalkTol and its solution polished at the full load.
+  /// change of the reference configuration. A walk that fails below kWalkTol is walked again to
+  /// it and polished at the full load (continue_load_to).
   ContinuationResult continuation(const MultipleShooting& ms) {
-    ContinuationResult result = walk(ms, options_.tol);
-    if (result.converged || options_.tol >= kWalkTol) return result;
-    ContinuationResult loose = walk(ms, kWalkTol);
-    if (!loose.converged) {
-      result.reason += "; walked to " + rodlab::format("{:g}", kWalkTol) + ": " + loose.reason;
-      return result;
-    }
-    // Polish: Newton from a point on the branch within kWalkTol stays on it.
-    P_.set_load_factor(1.0);
-    const NewtonResult polish = ms.solve(loose.state, newton_options());
-    iterations_ += polish.iterations;
-    loose.converged = polish.converged;
-    loose.state = polish.x;
-    loose.residual_norm = polish.residual_norm;
-    if (!polish.converged)
-      loose.reason = result.reason + "; walked to " + rodlab::format("{:g}", kWalkTol) +
-                     ", then polishing at load factor 1: " + polish.reason;
-    return loose;
+    auto walk_at = [this, &ms](double tol) {
+      NewtonOptions corrector = newton_options();
+      corrector.tol = tol;
+      Continuation walk;
+      walk.correct = [this, &ms, corrector](double lf, const VectorXd& guess) {
+        P_.set_load_factor(lf);
+        const NewtonResult r = ms.solve(guess, corrector);
+        iterations_ += r.iterations;
+        // A corrector whose line search cut steps may have left the branch: a shorter step.
+        const bool on_branch = r.converged && r.backtracks == 0;
+        return CorrectorResult{on_branch, r.x, r.residual_norm,
+                               r.converged && !on_branch ? "the corrector's line search cut steps"
+                                                         : r.reason};
+      };
+      walk.first_predictor = [this, &ms](double from, double to, const VectorXd& x) {
+        return VectorXd(x + reference_at(ms, to) - reference_at(ms, from));
+      };
+      return walk;
+    };
+    auto polish = [this, &ms](const VectorXd& state) {
+      P_.set_load_factor(1.0);
+      const NewtonResult r = ms.solve(state, newton_options());
+      iterations_ += r.iterations;
+      return CorrectorResult{r.converged, r.x, r.residual_norm, r.reason};
+    };
+    return continue_load_to(options_.tol, walk_at, reference_at(ms, 0.0), polish);
   }
 
-  /// One walk whose correctors solve to `tol`.
-  ContinuationResult walk(const MultipleShooting& ms, double tol) {
-    auto reference_at = [&](double lf) {
-      P_.set_load_factor(lf);
-      return ms.reference_guess();
-    };
-    NewtonOptions corrector = newton_options();
-    corrector.tol = tol;
-    Continuation walk;
-    walk.correct = [&](double lf, const VectorXd& guess) {
-      P_.set_load_factor(lf);
-      const NewtonResult r = ms.solve(guess, corrector);
-      iterations_ += r.iterations;
-      // A corrector whose line search cut steps may have left the branch: a shorter load step.
-      const bool on_branch = r.converged && r.backtracks == 0;
-      return CorrectorResult{on_branch, r.x, r.residual_norm,
-                             r.converged && !on_branch ? "the corrector's line search cut steps"
-                                                       : r.reason};
-    };
-    walk.first_predictor = [&](double from, double to, const VectorXd& x) {
-      return VectorXd(x + reference_at(to) - reference_at(from));
-    };
-    return continue_load(walk, reference_at(0.0));
+  /// Multiple shooting's reference configuration at a load factor (the walk's start).
+  VectorXd reference_at(const MultipleShooting& ms, double lf) {
+    P_.set_load_factor(lf);
+    return ms.reference_guess();
   }
 
   StaticProblem P_;

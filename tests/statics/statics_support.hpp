@@ -280,6 +280,25 @@ inline Eigen::Matrix<double, 6, 6> ad_matrix(const Vector6& xi) {
   return M;
 }
 
+/// The Table 2.1 Cosserat rod's internal wrench at the constant twist xi: K (xi - xi*) (2.28).
+inline Vector6 constant_twist_wrench(const Vector6& xi) {
+  const Vector6 K = (Vector6() << Table21::EI, Table21::EI, Table21::GJ, Table21::GA, Table21::GA,
+                     Table21::EA).finished();
+  const Vector6 xi_star = (Vector6() << 0, 0, 0, 0, 0, 1).finished();
+  return K.cwiseProduct(xi - xi_star);
+}
+
+/// The constant-twist load (2.68)-(2.69) on the Table 2.1 rod: the body tip wrench Lambda and
+/// the body distributed wrench ad_xi^T Lambda, which hold it at g(s) = exp(s xi) when Lambda is
+/// its internal wrench at xi.
+inline StaticProblem constant_twist_problem(rod::ModelKind kind, const Vector6& xi,
+                                            const Vector6& Lambda) {
+  StaticProblem problem = tip_wrench_problem(kind, Lambda, loads::WrenchFrame::body);  // (2.69)
+  problem.set_distributed(
+      loads::DistributedWrench{ad_matrix(xi).transpose() * Lambda, loads::WrenchFrame::body});
+  return problem;  // (2.68)
+}
+
 /// exp of hat(xi) as a 4x4 matrix, in long double by scaling and squaring (30 Taylor terms of
 /// X / 2^s with norm <= 1/4): independent of every closed form in rodlab::lie; error ~1e-18.
 inline Eigen::Matrix4d expm_reference(const Vector6& xi) {

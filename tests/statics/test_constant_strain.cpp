@@ -218,8 +218,6 @@ BOOST_AUTO_TEST_CASE(torsion_with_extension) {
 // Kirchhoff variant: nu = nu* and Lambda = [K_w w; f] with an arbitrary constant constraint
 // force f; W_bar = ad_xi^T Lambda.
 BOOST_AUTO_TEST_CASE(constant_twist_loads) {
-  const Vector6 K = (Vector6() << Table21::EI, Table21::EI, Table21::GJ, Table21::GA, Table21::GA, Table21::EA).finished();
-  const Vector6 xi_star = (Vector6() << 0, 0, 0, 0, 0, 1).finished();
   struct Case {
     ModelKind kind;
     Vector6 xi;
@@ -233,11 +231,9 @@ BOOST_AUTO_TEST_CASE(constant_twist_loads) {
   };
   PoseError worst_all;
   for (const auto& c : cases) {
-    Vector6 Lambda = K.cwiseProduct(c.xi - xi_star);
+    Vector6 Lambda = constant_twist_wrench(c.xi);
     if (c.kind == ModelKind::kirchhoff) Lambda.tail<3>() = c.constraint_force;
-    const Vector6 W_bar = ad_matrix(c.xi).transpose() * Lambda;  // (2.68)
-    StaticProblem problem = tip_wrench_problem(c.kind, Lambda, WrenchFrame::body);  // (2.69)
-    problem.set_distributed(loads::DistributedWrench{W_bar, WrenchFrame::body});
+    StaticProblem problem = constant_twist_problem(c.kind, c.xi, Lambda);  // (2.68)-(2.69)
     for (const auto& scheme : statics_schemes_under_test()) {
       for (const int N : grid_for(scheme, kNodes)) {
         const auto r = solve(problem, scheme.name, N);

@@ -31,11 +31,9 @@ using namespace rodlab::solvers;
 using namespace rodlab::solvers::statics;
 using rodlab::testing::actuators::kL;
 using rodlab::testing::actuators::straight;
-using rodlab::testing::statics::ad_matrix;
 using rodlab::testing::statics::expm_reference;
 using rodlab::testing::statics::pose_error;
 using rodlab::testing::statics::PoseError;
-using rodlab::testing::statics::Table21;
 
 const RkmkMethod kMethods[] = {RkmkMethod::euler_explicit, RkmkMethod::euler_implicit,
                                RkmkMethod::midpoint_explicit, RkmkMethod::midpoint_implicit,
@@ -51,20 +49,6 @@ StaticProblem actuated_problem() {
   auto cable = straight(ActuatorKind::cable, -0.003, 0.002, 10 * (kL / (kNodes - 1)), kL);
   cable.input = 0.4;
   P.add_actuator(cable);
-  return P;
-}
-
-/// The large-shear constant-twist load of test_statics_robustness.cpp: xi = [3, -2, 5, 0.04,
-/// -0.03, 1.02] /m held by the tip wrench K (xi - xi*) and the body load ad_xi^T of it.
-StaticProblem constant_twist_problem(const Vector6& xi) {
-  const Vector6 K = (Vector6() << Table21::EI, Table21::EI, Table21::GJ, Table21::GA,
-                     Table21::GA, Table21::EA).finished();
-  const Vector6 xi_star = (Vector6() << 0, 0, 0, 0, 0, 1).finished();
-  const Vector6 Lambda = K.cwiseProduct(xi - xi_star);
-  StaticProblem P = rodlab::testing::statics::tip_wrench_problem(rod::ModelKind::cosserat, Lambda,
-                                                                  loads::WrenchFrame::body);
-  P.set_distributed(
-      loads::DistributedWrench{ad_matrix(xi).transpose() * Lambda, loads::WrenchFrame::body});
   return P;
 }
 
@@ -172,7 +156,8 @@ BOOST_AUTO_TEST_CASE(solves_the_schemes_own_equations) {
 
 BOOST_AUTO_TEST_CASE(solves_where_single_shooting_cannot) {
   const Vector6 xi = (Vector6() << 3.0, -2.0, 5.0, 0.04, -0.03, 1.02).finished();
-  StaticProblem P = constant_twist_problem(xi);
+  StaticProblem P = rodlab::testing::statics::constant_twist_problem(
+      rod::ModelKind::cosserat, xi, rodlab::testing::statics::constant_twist_wrench(xi));
   for (const int nodes : {5, 11}) {
     // Single shooting's Newton from the rigid guess finds no descent here (the march blows up
     // for nearby base wrenches), and its continuation stalls (test_statics_robustness.cpp).

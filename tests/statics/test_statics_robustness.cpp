@@ -59,13 +59,10 @@ BOOST_AUTO_TEST_CASE(clamped_at_arc_end_kappa_l_3) {
 }
 
 BOOST_AUTO_TEST_CASE(constant_twist_large_shear) {
-  const Vector6 K = (Vector6() << Table21::EI, Table21::EI, Table21::GJ, Table21::GA, Table21::GA, Table21::EA).finished();
-  const Vector6 xi_star = (Vector6() << 0, 0, 0, 0, 0, 1).finished();
   for (const Vector6& xi : {(Vector6() << 3.0, -2.0, 5.0, 0.04, -0.03, 1.02).finished(),
                             (Vector6() << 8.0, -5.0, 12.0, -0.02, 0.05, 0.95).finished()}) {
-    const Vector6 Lambda = K.cwiseProduct(xi - xi_star);
-    StaticProblem problem = tip_wrench_problem(ModelKind::cosserat, Lambda, WrenchFrame::body);
-    problem.set_distributed(loads::DistributedWrench{ad_matrix(xi).transpose() * Lambda, WrenchFrame::body});
+    const Vector6 Lambda = constant_twist_wrench(xi);
+    const StaticProblem problem = constant_twist_problem(ModelKind::cosserat, xi, Lambda);
     for (const auto& s : statics_schemes_under_test()) {
       for (const int N : grid_for(s, {5, 11, 21, 100, 200})) {
         const auto r = solve(problem, s.name, N);  // default tolerance 1e-12: these loads are ~30 EI/L^2

@@ -25,6 +25,10 @@ struct NewtonOptions {
   /// where it cannot be evaluated. Broyden updates it as they would the finite differences.
   std::function<bool(const Eigen::VectorXd& x, const Eigen::VectorXd& F, Eigen::MatrixXd& J)>
       jacobian;
+  /// Optional rounding level of the residual at x: where a fresh Jacobian's step finds no
+  /// descent at |F|_inf <= rounding_floor(x), the solve counts as converged (a tolerance below
+  /// that level cannot be met by any iterate; multiple_shooting.cpp).
+  std::function<double(const Eigen::VectorXd& x)> rounding_floor;
 };
 
 struct NewtonResult {
@@ -36,10 +40,6 @@ struct NewtonResult {
   bool converged = false;
   std::string reason;           ///< why not, when not converged
 };
-
-/// NewtonResult::reason when a fresh Jacobian's step finds no descent (e.g. on the rounding
-/// floor of the residual).
-inline constexpr const char* kLineSearchFailed = "line search failed to reduce the residual";
 
 NewtonResult solve_newton(const Residual& F, Eigen::VectorXd x0, const NewtonOptions& options);
 

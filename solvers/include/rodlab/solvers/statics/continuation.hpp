@@ -50,4 +50,19 @@ struct Continuation {
 /// Walks from load factor 0 with state `start` (an exact solution there) to 1.
 ContinuationResult continue_load(const Continuation& walk, Eigen::VectorXd start);
 
+/// The corrector tolerance of continue_load_to's second walk.
+inline constexpr double kWalkTol = 1e-9;
+
+/// The walk walk_at(tol), whose correctors solve to `tol`; if it fails and tol < kWalkTol, the
+/// walk walk_at(kWalkTol), and its solution polished at load factor 1 by `polish` (Newton from
+/// within kWalkTol of the branch stays on it). Correctors held to a tolerance near the rounding
+/// level cut line-search steps in the noise, which the walk takes for leaving the branch (soft
+/// cantilevers at tol 1e-12, docs/statics.md "Tolerances near the rounding level"); walks that
+/// pass at `tol` are unchanged. A failed polish returns load factor 1 and the polished state,
+/// not converged; a failed second walk returns the first walk's result, both reasons named.
+ContinuationResult continue_load_to(
+    double tol, const std::function<Continuation(double corrector_tol)>& walk_at,
+    const Eigen::VectorXd& start,
+    const std::function<CorrectorResult(const Eigen::VectorXd& state)>& polish);
+
 }  // namespace rodlab::solvers::statics
