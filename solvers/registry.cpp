@@ -63,7 +63,7 @@ std::unique_ptr<Stepper> variational(const DynamicProblem& problem, const Dynami
 }
 
 dynamics::ShootingOptions shooting_options(const DynamicSolveOptions& o) {
-  return {o.nodes, o.tol, o.max_iterations, o.grid};
+  return {o.nodes, o.tol, o.max_iterations, o.grid, o.shooting_intervals};
 }
 
 std::unique_ptr<Stepper> implicit_midpoint(const DynamicProblem& problem,

@@ -130,7 +130,7 @@ bool marches_in_s(std::string_view scheme) {
 std::string step_problem(const DynamicProblem& problem, const DynamicSolveOptions& options,
                          double dt) {
   if (!marches_in_s(options.scheme)) return {};
-  return single_shooting_step_problem(problem, options.scheme, options.grid, dt, options.tol);
+  return shooting_step_problem(problem, options.scheme, options.grid, dt, options.tol);
 }
 
 result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolveOptions& options) {
@@ -153,7 +153,7 @@ result::DynamicResult solve_dynamic(const scene::Scene& scene, const DynamicSolv
   // Equal steps that end exactly at t_end (a variational integrator keeps its step).
   const long steps = std::max(1L, std::lround(std::ceil(options.t_end / options.dt - 1e-9)));
   const double dt = options.t_end / static_cast<double>(steps);
-  // refused before it starts where single shooting cannot converge (step_bound.hpp)
+  // refused before it starts where shooting cannot converge (step_bound.hpp)
   if (const std::string why = step_problem(problem, options, dt); !why.empty())
     throw std::invalid_argument(why);
   out.dt = dt;

@@ -9,6 +9,7 @@
 // backtracking along a fresh Jacobian's step that does not reduce the residual, and a linear
 // predictor from the last two steps' solutions.
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <string>
 
@@ -58,10 +59,22 @@ class ShootingNewton {
   /// perturbed repeat of the step `other` has just solved: control's finite differences).
   void warm_from(const ShootingNewton& other) {
     J_ = other.J_;
+    H_ = other.H_;
     valid_ = other.valid_;
     c_ = other.c_;
     prev_ = prev2_ = other.prev_;
   }
+
+  /// Multiple shooting: where no step along a fresh Jacobian's direction reduces the residual,
+  /// accept x if each row is within tol of what moving every unknown in its last bits
+  /// (kRoundingUlps units of rounding, either way) changes it by: the residual cannot be resolved
+  /// further in double precision (the interior joins amplify like the march, e^(kappa / M)).
+  void accept_rounding_floor(bool on) { accept_rounding_floor_ = on; }
+
+  /// Multiple shooting: keep the Jacobian's inverse H and apply Broyden's update to it
+  /// (Sherman-Morrison: the same iterates in exact arithmetic), O(n^2) per Newton step instead of
+  /// an O(n^3) factorisation (n = 6 + 18 (M - 1) unknowns; a fresh Jacobian is inverted once).
+  void keep_inverse(bool on) { inverse_ = on; }
 
   /// The first guess of the first step (also the predictor's history).
   void start(const Vec& x0) {
@@ -80,12 +93,24 @@ class ShootingNewton {
   template <class Shoot>
   ShootingOutcome solve(Shoot&& shoot, double c, bool extrapolate, double tol,
                         int max_iterations) {
+    auto by_columns = [&shoot](const Vec& x, const Vec& r, Mat& J, int& shots) {
+      finite_difference_columns(shoot, x, r, J, shots);
+    };
+    return solve(shoot, by_columns, c, extrapolate, tol, max_iterations);
+  }
+
+  /// The same with the Jacobian from `jacobian(x, r, J, shots)`, which fills J at x (r = shoot
+  /// (x)), adds the integrations it spent to shots and leaves the profiles of x behind (multiple
+  /// shooting: finite differences interval by interval, each column re-marching one interval).
+  template <class Shoot, class Jacobian>
+  ShootingOutcome solve(Shoot&& shoot, Jacobian&& jacobian, double c, bool extrapolate,
+                        double tol, int max_iterations) {
     ShootingOutcome out;
     Vec x = extrapolate ? Vec(2.0 * prev_ - prev2_) : prev_;
     Vec r = shoot(x);
     ++out.shots;
     if (!valid_ || c != c_) {
-      if (!finite_difference_jacobian(shoot, x, r, c, out.shots)) {
+      if (!fresh_jacobian(jacobian, x, r, c, out.shots)) {
         out.failure = "the Jacobian is not finite";
         return out;
       }
@@ -101,8 +126,7 @@ class ShootingNewton {
             rodlab::format("single shooting did not converge (tip residual {:g})", norm(r));
         return out;
       }
-      const Eigen::PartialPivLU<Mat> lu(J_);
-      const Vec dx = -lu.solve(r);
+      const Vec dx = inverse_ ? Vec(-(H_ * r)) : Vec(-Eigen::PartialPivLU<Mat>(J_).solve(r));
       if (!dx.allFinite()) {
         out.failure = "the shooting Jacobian is singular";
         return out;
@@ -115,7 +139,7 @@ class ShootingNewton {
       slow_steps = slow && keep_slow ? slow_steps + 1 : 0;
       if (slow && !keep_slow && !fresh) {
         // Broyden's secant model went stale: rebuild the Jacobian where we stand.
-        if (!finite_difference_jacobian(shoot, x, r, c, out.shots)) {
+        if (!fresh_jacobian(jacobian, x, r, c, out.shots)) {
           out.failure = "the Jacobian is not finite";
           return out;
         }
@@ -131,6 +155,11 @@ class ShootingNewton {
         ++out.shots;
       }
       if (!(norm(r_new) < norm(r))) {
+        if (accept_rounding_floor_ && at_rounding_floor(shoot, x, r, tol, out.shots)) {
+          shoot(x);  // the profiles of the solution
+          ++out.shots;
+          break;
+        }
         shoot(x);  // leave the profiles of the best iterate
         out.failure = rodlab::format(
             "single shooting did not converge (no step along Newton's direction reduces the tip "
@@ -139,8 +168,14 @@ class ShootingNewton {
         return out;
       }
       ++iterations;
-      // Broyden's rank-one update of the secant model.
-      J_ += ((r_new - r) - J_ * step) * step.transpose() / step.squaredNorm();
+      // Broyden's rank-one update of the secant model (of its inverse, Sherman-Morrison).
+      if (inverse_) {
+        const Vec Hy = H_ * (r_new - r);
+        const double denominator = step.dot(Hy);
+        if (denominator != 0.0) H_ += (step - Hy) * (step.transpose() * H_) / denominator;
+      } else {
+        J_ += ((r_new - r) - J_ * step) * step.transpose() / step.squaredNorm();
+      }
       x += step;
       r = r_new;
       fresh = false;
@@ -151,26 +186,53 @@ class ShootingNewton {
   }
 
  private:
-  template <class Shoot>
-  bool finite_difference_jacobian(Shoot& shoot, const Vec& x, const Vec& r, double c, int& shots) {
+  template <class Jacobian>
+  bool fresh_jacobian(Jacobian& jacobian, const Vec& x, const Vec& r, double c, int& shots) {
     const auto n = x.size();
     if (J_.rows() != n) J_.setZero(n, n);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const double h = kShootingFdStep * std::max(1.0, std::abs(x[k]));
-      Vec xp = x;
-      xp[k] += h;
-      J_.col(k) = (shoot(xp) - r) / h;
-      ++shots;
-    }
-    shoot(x);  // restore the profiles of x
-    ++shots;
+    jacobian(x, r, J_, shots);
     valid_ = J_.allFinite();
+    if (valid_ && inverse_) {
+      H_ = Eigen::PartialPivLU<Mat>(J_).inverse();
+      valid_ = H_.allFinite();
+    }
     c_ = c;  // the Jacobian depends on the step through c
     return valid_;
   }
 
-  Mat J_;
+  static constexpr double kRoundingUlps = 16.0;
+
+  template <class Shoot>
+  static bool at_rounding_floor(Shoot& shoot, const Vec& x, const Vec& r, double tol, int& shots) {
+    Vec floor = Vec::Zero(r.size());
+    for (const double sign : {1.0, -1.0, 0.0}) {  // 0: x again, from other warm starts
+      const double move = sign * kRoundingUlps * std::numeric_limits<double>::epsilon();
+      const Vec moved = x + move * x.cwiseAbs();
+      floor = floor.cwiseMax((shoot(moved) - r).cwiseAbs());
+      ++shots;
+    }
+    return (r.cwiseAbs().array() <= tol + floor.array()).all();
+  }
+
+  /// Forward differences column by column, a whole shot each (single shooting).
+  template <class Shoot>
+  static void finite_difference_columns(Shoot& shoot, const Vec& x, const Vec& r, Mat& J,
+                                        int& shots) {
+    for (Eigen::Index k = 0; k < x.size(); ++k) {
+      const double h = kShootingFdStep * std::max(1.0, std::abs(x[k]));
+      Vec xp = x;
+      xp[k] += h;
+      J.col(k) = (shoot(xp) - r) / h;
+      ++shots;
+    }
+    shoot(x);  // restore the profiles of x
+    ++shots;
+  }
+
+  Mat J_, H_;
   bool valid_ = false;
+  bool inverse_ = false;
+  bool accept_rounding_floor_ = false;
   double c_ = 0.0;
   Vec prev_, prev2_;
 };

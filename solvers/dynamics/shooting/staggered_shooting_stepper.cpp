@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/LU>
@@ -13,6 +14,7 @@
 #include "rodlab/check.hpp"
 #include "rodlab/lie/small_angle.hpp"
 #include "rodlab/solvers/dynamics/corrected_grid.hpp"
+#include "rodlab/solvers/dynamics/shooting/step_bound.hpp"
 #include "../../common/cloned.hpp"
 #include "../staggered_paths.hpp"
 #include "../tangent_state.hpp"
@@ -33,6 +35,9 @@ namespace small = lie::small_angle;
 /// rounding) made the step 8 % dearer (bench_dynamics); the tip moves by 4e-13 m between the
 /// two over 0.5 s of the cantilever (N = 20, dt = 10 ms).
 constexpr double kStrainTol = 1e-13;
+/// The same under multiple shooting (below the step bound, not the hot path): a few units of
+/// rounding of ds xi, so that the strains' stops add no noise to the joins' residuals.
+constexpr double kJoinStrainTol = 4e-15;
 /// Fixed-point iterations at most; Newton takes over if one move is not below kSlowContraction
 /// times the previous one.
 constexpr int kFixedPointIterations = 30;
@@ -148,7 +153,20 @@ class StaggeredShootingStepper final : public Stepper {
     rule_->history(RuleField::velocity, dt, eta_, eta_hist_);
     t_end_ = t + dt;
     prepare_references();
-    const ShootingOutcome out = solve_shots(steps_ >= 2);
+    set_intervals(std::max(interval_count_for(dt), refined_intervals_));
+    if (A != nullptr && intervals() > 1)
+      throw unsupported("step_linearised beyond single shooting's lower step bound (multiple "
+                        "shooting; docs/dynamics.md \"Multiple shooting below the bound\")");
+    ShootingOutcome out = intervals() > 1 ? solve_intervals(dt) : solve_shots(steps_ >= 2);
+    // A multiple-shooting step that stalls is retried with twice the intervals (for the rest of
+    // the run), down to one per segment: shorter intervals amplify the rounding less.
+    while (!out.failure.empty() && intervals() > 1 && intervals() < n_ - 1) {
+      const int spent = out.shots;
+      refined_intervals_ = std::min(2 * intervals(), n_ - 1);
+      set_intervals(refined_intervals_);
+      out = solve_intervals(dt);
+      out.shots += spent;
+    }
     if (!out.failure.empty())
       return StepStatus::failed(rodlab::format(
           "{}: {} in the step from t = {:g} s (dt = {:g} s)", name_, out.failure, t, dt));
@@ -231,6 +249,14 @@ class StaggeredShootingStepper final : public Stepper {
     F_ = o.F_;
     plain_ = o.plain_;
     extended_ = o.extended_;
+    multiple_ = o.multiple_;
+    multiple_steps_ = o.multiple_steps_, refined_intervals_ = o.refined_intervals_;
+    intervals_dt_ = o.intervals_dt_, intervals_at_dt_ = o.intervals_at_dt_;
+    first_ = o.first_;
+    interval_ref_ = o.interval_ref_;
+    interval_end_ = o.interval_end_;
+    interval_dissipated_ = o.interval_dissipated_, interval_work_ = o.interval_work_;
+    eta_scale_ = o.eta_scale_, join_scale_ = o.join_scale_;
     unknown_ = o.unknown_;
     xi_end_ = o.xi_end_;
     Kt_full_ = o.Kt_full_, Kt_accel_ = o.Kt_accel_;
@@ -242,6 +268,7 @@ class StaggeredShootingStepper final : public Stepper {
     const auto& o = dynamic_cast<const StaggeredShootingStepper&>(after);
     plain_.warm_from(o.plain_);
     extended_.warm_from(o.extended_);
+    multiple_.warm_from(o.multiple_);
   }
 
   int tangent_size() const override { return tangent_.size(); }
@@ -348,8 +375,6 @@ class StaggeredShootingStepper final : public Stepper {
         unknown_[e] = x[6 + e] * (is_muscle_[e] ? P_.length() : scale_[3]);
       F_ = P_.forces(t_u_, unknown_.data(), paths_.rest().data());
     }
-    SE3 g_end = node.g;  // a clamped tip: the end-of-step poses (tip_residual)
-    const double a = end_;
     double dissipated = 0.0, work = 0.0;
     eta_u_[0].setZero();
     march_[0] = node;
@@ -364,21 +389,13 @@ class StaggeredShootingStepper final : public Stepper {
       xi_u_[j] = xi;
       eta_u_[j + 1] = node.eta;
       march_[j + 1] = node;
-      if (clamped_) g_end = g_end * SE3::exp(ds_ * (a * xi + (1.0 - a) * xi_[j]));
     }
     dissipated_u_ = dissipated;
     Vec r;
     r.resize(6 + m_);
-    if (clamped_) {
-      // the clamp (no work): the end-of-step tip pose on it; lambda_pre is its reaction
-      work_u_ = work;
-      r.template head<6>() = P_.clamp_mismatch(g_end);
-    } else {
-      const Vector6 W = P_.tip_load(node.g.rotation(), t_u_);
-      work_u_ = work + W.dot(node.eta);
-      r.template head<6>() = (node.lambda_pre - W).cwiseQuotient(scale_);
-    }
+    r.template head<6>() = tip_residual(node, work);
     if (m_ > 0) {
+      const double a = end_;
       for (int j = 0; j + 1 < n_; ++j) xi_end_[j] = a * xi_u_[j] + (1.0 - a) * xi_[j];
       const double L = P_.length();
       for (int e = 0; e < m_; ++e)
@@ -387,6 +404,24 @@ class StaggeredShootingStepper final : public Stepper {
                                                                     t_end_, paths_.rest()[e])) / L;
     }
     return r;
+  }
+
+  /// The tip's rows of the residual from the march's last node and the work of the rest of the
+  /// rod; sets work_u_. A free tip: the scaled wrench mismatch; a clamped one (no work): the
+  /// end-of-step tip pose, exp(ds (a xi_u + (1 - a) xi)) chained from the base, on the clamp
+  /// (lambda_pre is its reaction).
+  Vector6 tip_residual(const MarchNode& tip, double work) {
+    if (clamped_) {
+      work_u_ = work;
+      const double a = end_;
+      SE3 g_end = P_.base();
+      for (int j = 0; j + 1 < n_; ++j)
+        g_end = g_end * SE3::exp(ds_ * (a * xi_u_[j] + (1.0 - a) * xi_[j]));
+      return P_.clamp_mismatch(g_end);
+    }
+    const Vector6 W = P_.tip_load(tip.g.rotation(), t_u_);
+    work_u_ = work + W.dot(tip.eta);
+    return (tip.lambda_pre - W).cwiseQuotient(scale_);
   }
 
   /// Actuator unknowns: which actuators, their segment weights and grid rest lengths (at xi*),
@@ -557,6 +592,198 @@ class StaggeredShootingStepper final : public Stepper {
                          c_, extrapolate, opt_.tol, opt_.max_iterations);
   }
 
+  // --- multiple shooting (docs/dynamics.md "Multiple shooting below the bound") ------------
+  // Beyond single shooting's lower step bound the march amplifies an error at the base by
+  // e^kappa > tol / eps (step_bound.hpp). The rod is then cut at nodes first_[1..M-1] into M
+  // intervals of exponent about kappa / M; each interval is marched from its own start state
+  // (the unknowns: lambda_0 as in single shooting, and per interior start node its lambda_pre,
+  // eta and pose), and the residual is the tip's rows and the 18 jumps where an interval's march
+  // ends on the next one's start. Same equations, same solution as single shooting (to tol); the
+  // Jacobian by intervals (a column re-marches its interval only), Broyden between as for single
+  // shooting but on the Jacobian's inverse (ShootingNewton::keep_inverse), and a stall on the
+  // residual's rounding floor accepted (ShootingNewton::accept_rounding_floor). The joins' (and
+  // the free tip's) axial force is scaled by E A, not E I / L^2: at small dt the axial rows
+  // cannot be resolved to 1e-10 E I / L^2 (5e-15 N on the Table 2.1 rod, an axial strain of
+  // 6e-17) and Newton stalled there. Not the hot path: dynamic-size vectors.
+
+  static constexpr int kJoin = 18;  ///< unknowns (and residual rows) per interior interval start
+
+  int intervals() const { return first_.empty() ? 1 : static_cast<int>(first_.size()) - 1; }
+
+  /// The intervals a step of dt takes (step_bound.hpp; kept for the last dt: the step's hot path
+  /// pays no pow).
+  int interval_count_for(double dt) {
+    if (m_ > 0 || opt_.grid == ShootingGrid::euler) return 1;
+    if (opt_.intervals > 0) return std::min(opt_.intervals, n_ - 1);
+    if (dt != intervals_dt_) {
+      intervals_dt_ = dt;
+      intervals_at_dt_ =
+          shooting_intervals(single_shooting_exponent(P_, dt), opt_.grid, opt_.tol, n_ - 1);
+    }
+    return intervals_at_dt_;
+  }
+
+  /// M intervals of (nearly) equal numbers of segments; a change restarts multiple_ (its
+  /// unknowns change).
+  void set_intervals(int M) {
+    if (M == intervals()) return;
+    multiple_steps_ = 0;
+    if (M == 1) {
+      first_.clear();
+      return;
+    }
+    first_.resize(M + 1);
+    for (int i = 0; i <= M; ++i)
+      first_[i] = static_cast<int>(std::lround(static_cast<double>(i) * (n_ - 1) / M));
+    interval_ref_.assign(M, SE3());
+    interval_end_.assign(M, MarchNode{Vector6::Zero(), Vector6::Zero(), SE3()});
+    interval_dissipated_.assign(M, 0.0);
+    interval_work_.assign(M, 0.0);
+  }
+
+  /// Interval i's start node from the unknowns: i = 0 the base with lambda_0 = x_0..5 scale; else
+  /// lambda_pre = u_0..5 scale, eta = u_6..11 eta_scale, the pose at its rotation and position at
+  /// the step's start moved by exp(u_12..14) and L u_15..17.
+  MarchNode interval_start(int i, const Eigen::VectorXd& x) const {
+    if (i == 0) return {x.head<6>().cwiseProduct(scale_), Vector6::Zero(), P_.base()};
+    const auto u = x.segment<kJoin>(6 + kJoin * (i - 1));
+    const SE3& ref = interval_ref_[i];
+    return {u.head<6>().cwiseProduct(join_scale_), u.segment<6>(6).cwiseProduct(eta_scale_),
+            SE3(ref.rotation() * SO3::exp(u.segment<3>(12)),
+                ref.translation() + P_.length() * u.tail<3>())};
+  }
+
+  /// Marches interval i from its start (the strains from `guess`): profiles, march_ and eta_u_
+  /// on its nodes but its last (the next interval's start; the tip for the last interval), its
+  /// end node and powers.
+  void march_interval(int i, const Eigen::VectorXd& x, const std::vector<Vector6>& guess) {
+    MarchNode node = interval_start(i, x);
+    const int first = first_[i], end = first_[i + 1];
+    march_[first] = node;
+    eta_u_[first] = node.eta;
+    double dissipated = 0.0, work = 0.0;
+    for (int j = first; j < end; ++j) {
+      Vector6 X;
+      node = march_segment(j, node, ds_ * guess[j], X, dissipated, work);
+      xi_u_[j] = X / ds_;
+      if (j + 1 < end || j + 2 == n_) {
+        eta_u_[j + 1] = node.eta;
+        march_[j + 1] = node;
+      }
+    }
+    interval_end_[i] = node;
+    interval_dissipated_[i] = dissipated;
+    interval_work_[i] = work;
+  }
+
+  /// The residual from the intervals' last marches: the tip's rows (tip_residual), then per
+  /// interior start the jump of the march's end on it, scaled as its unknowns (the rotation
+  /// as log(R_start^T R_end)). Sets the step's powers.
+  Eigen::VectorXd interval_residual(const Eigen::VectorXd& x) {
+    const int M = intervals();
+    double dissipated = 0.0, work = 0.0;
+    for (int i = 0; i < M; ++i) {
+      dissipated += interval_dissipated_[i];
+      work += interval_work_[i];
+    }
+    dissipated_u_ = dissipated;
+    Eigen::VectorXd r(x.size());
+    r.head<6>() = tip_residual(interval_end_.back(), work);
+    if (!clamped_) r[5] *= scale_[5] / join_scale_[5];  // the axial force in E A (join_scale_)
+    for (int i = 1; i < M; ++i) {
+      const MarchNode& end = interval_end_[i - 1];
+      const MarchNode start = interval_start(i, x);
+      r.segment<kJoin>(6 + kJoin * (i - 1))
+          << (end.lambda_pre - start.lambda_pre).cwiseQuotient(join_scale_),
+          (end.eta - start.eta).cwiseQuotient(eta_scale_),
+          (start.g.rotation().inverse() * end.g.rotation()).log(),
+          (end.g.translation() - start.g.translation()) / P_.length();
+    }
+    return r;
+  }
+
+  Eigen::VectorXd shoot_intervals(const Eigen::VectorXd& x) {
+    // warm start as shoot()
+    const std::vector<Vector6>& guess = inner_failed_ ? xi_ : xi_u_;
+    inner_failed_ = false;
+    for (int i = 0; i < intervals(); ++i) march_interval(i, x, guess);
+    return interval_residual(x);
+  }
+
+  /// Forward differences by intervals: an unknown of interval i moves its march and the jump at
+  /// its start only (and a clamped tip's pose), so its column re-marches interval i alone, the
+  /// others staying at x (Newton may ask at an iterate after a shot elsewhere: x is shot first);
+  /// the profiles of x are restored. The shots counted: segments marched / segments of the rod.
+  void interval_jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& r, Eigen::MatrixXd& J,
+                         int& shots) {
+    shoot_intervals(x);
+    const bool failed = inner_failed_;
+    long segments = n_ - 1;
+    Eigen::VectorXd xp = x;
+    for (int i = 0; i < intervals(); ++i) {
+      const int lo = i == 0 ? 0 : 6 + kJoin * (i - 1), count = i == 0 ? 6 : kJoin;
+      for (int k = lo; k < lo + count; ++k) {
+        const double h = kShootingFdStep * std::max(1.0, std::abs(x[k]));
+        xp[k] = x[k] + h;
+        march_interval(i, xp, xi_u_);
+        J.col(k) = (interval_residual(xp) - r) / h;
+        xp[k] = x[k];
+      }
+      march_interval(i, x, xi_u_);
+      segments += static_cast<long>(count + 1) * (first_[i + 1] - first_[i]);
+    }
+    interval_residual(x);
+    inner_failed_ = failed;
+    shots += static_cast<int>((segments + n_ - 2) / (n_ - 1));
+  }
+
+  /// The first unknowns of multiple shooting, from the state at the step's start: each start
+  /// node's lambda_pre the elastic stress of its segment (as the constructor's lambda_0), its
+  /// velocity, its pose; later steps predict from the last two solutions (these coordinates are
+  /// relative to the step's start, so a steady motion extrapolates exactly).
+  Eigen::VectorXd interval_guess() const {
+    const int M = intervals();
+    const auto& K = P_.model().K_diag();
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(6 + kJoin * (M - 1));
+    for (int i = 0; i < M; ++i) {
+      const int b = first_[i];
+      const Vector6 lambda = K.cwiseProduct(xi_[b] - P_.model().segment_xi_star(b, n_));
+      if (i == 0) {
+        x.head<6>() = lambda.cwiseQuotient(scale_);
+      } else {
+        x.segment<6>(6 + kJoin * (i - 1)) = lambda.cwiseQuotient(join_scale_);
+        x.segment<6>(12 + kJoin * (i - 1)) = eta_[b].cwiseQuotient(eta_scale_);
+      }
+    }
+    return x;
+  }
+
+  ShootingOutcome solve_intervals(double dt) {
+    const double L = P_.length();
+    eta_scale_ << Vector3::Constant(1.0 / dt), Vector3::Constant(L / dt);
+    join_scale_ = scale_;
+    join_scale_[5] = P_.model().K_diag()[5];
+    for (int i = 1; i < intervals(); ++i) interval_ref_[i] = g_[first_[i]];
+    if (multiple_steps_ == 0) {
+      multiple_.start(interval_guess());
+      multiple_.accept_rounding_floor(true);
+      multiple_.keep_inverse(true);
+    }
+    ShootingOutcome out = multiple_.solve(
+        [this](const Eigen::VectorXd& x) { return shoot_intervals(x); },
+        [this](const Eigen::VectorXd& x, const Eigen::VectorXd& r, Eigen::MatrixXd& J,
+               int& shots) { interval_jacobian(x, r, J, shots); },
+        c_, multiple_steps_ >= 2, opt_.tol, opt_.max_iterations);
+    if (!out.failure.empty()) {
+      const auto at = out.failure.find("single shooting");
+      if (at != std::string::npos)
+        out.failure.replace(at, std::string_view("single shooting").size(),
+                            rodlab::format("multiple shooting ({} intervals)", intervals()));
+    }
+    ++multiple_steps_;
+    return out;
+  }
+
   /// `initial: static`: the given state is a statics solution sampled from another grid
   /// (rkmk-rk4, 4x finer), O(ds^2) off this grid's equilibrium; re-solve the equilibrium here
   /// with the march at c = 0 (no inertia, no viscous stress: the staggered grid's statics) under
@@ -613,7 +840,9 @@ class StaggeredShootingStepper final : public Stepper {
       return Vector6(ds_ * P_.solve_strain(muscles_ ? Kt_full_[j] : Kt_matrix_, xi_ref_[j], sigma,
                                            s_mid, F_, &guess));
     };
-    const double tol = kStrainTol * ds_;
+    const double tol = intervals() > 1
+                           ? kJoinStrainTol * std::max(ds_, X0.lpNorm<Eigen::Infinity>())
+                           : kStrainTol * ds_;
     Vector6 X = X0;
     double previous = std::numeric_limits<double>::infinity();
     const bool kirchhoff = P_.is_kirchhoff();
@@ -701,6 +930,19 @@ class StaggeredShootingStepper final : public Stepper {
   DynamicProblem::Forces F_{};
   ShootingNewton<Vector6, Matrix6> plain_;  ///< lambda_0 only
   ShootingNewton<ShootingVectorU, ShootingMatrixU> extended_;  ///< and the actuator unknowns
+  // Multiple shooting (below single shooting's step bound): the intervals' first nodes (and
+  // n_ - 1), the poses at their starts at the step's start, their last marches' end nodes and
+  // powers, the velocity unknowns' scale, Newton's state and its steps taken.
+  std::vector<int> first_;
+  std::vector<SE3> interval_ref_;
+  std::vector<MarchNode> interval_end_;
+  std::vector<double> interval_dissipated_, interval_work_;
+  Vector6 eta_scale_ = Vector6::Ones(), join_scale_ = Vector6::Ones();
+  ShootingNewton<Eigen::VectorXd, Eigen::MatrixXd> multiple_;
+  long multiple_steps_ = 0;
+  int refined_intervals_ = 1;  ///< at least this many intervals after a stalled step
+  double intervals_dt_ = 0.0;  ///< interval_count_for's last dt and its intervals
+  int intervals_at_dt_ = 1;
   // Actuator unknowns (muscle lengths, length-controlled forces) and embedded muscles.
   int m_ = 0;
   bool muscles_ = false;

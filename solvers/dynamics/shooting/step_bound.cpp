@@ -59,4 +59,24 @@ std::string single_shooting_step_problem(const DynamicProblem& problem, std::str
                  : "");
 }
 
+int shooting_intervals(double kappa, ShootingGrid grid, double tol, int segments) {
+  const double bound = single_shooting_exponent_bound(grid, tol);
+  if (!(kappa > bound)) return 1;
+  const double per_interval = std::max(bound - kIntervalMargin, kMinIntervalExponent);
+  return std::clamp(static_cast<int>(std::ceil(kappa / per_interval)), 2, std::max(2, segments));
+}
+
+bool multiple_shooting_fits(const DynamicProblem& problem, ShootingGrid grid) {
+  return grid != ShootingGrid::euler && problem.unknown_count() == 0;
+}
+
+std::string shooting_step_problem(const DynamicProblem& problem, std::string_view scheme,
+                                  ShootingGrid grid, double dt, double tol) {
+  if (multiple_shooting_fits(problem, grid)) return {};
+  std::string why = single_shooting_step_problem(problem, scheme, grid, dt, tol);
+  if (!why.empty() && grid != ShootingGrid::euler)
+    why += " (multiple shooting, which lifts the bound, does not cover muscles or length control)";
+  return why;
+}
+
 }  // namespace rodlab::solvers::dynamics

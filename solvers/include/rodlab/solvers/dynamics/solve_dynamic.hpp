@@ -27,6 +27,7 @@ struct DynamicSolveOptions {
   double tol = 1e-10;       ///< nonlinear solves inside a step
   int max_iterations = 50;  ///< per nonlinear solve
   ShootingGrid grid = ShootingOptions{}.grid;  ///< `implicit-midpoint`, `bdf-alpha`: solver.grid
+  int shooting_intervals = ShootingOptions{}.intervals;  ///< and their march's intervals (0: auto)
   double alpha = BdfAlphaOptions{}.alpha;      ///< `bdf-alpha`: in [-0.5, 0] (0 BDF2, -0.5 trapezoidal)
   /// `variational`: solver.variational_step (verlet, second order; symplectic-euler, the thesis)
   VariationalStep variational_step = VariationalOptions{}.step;

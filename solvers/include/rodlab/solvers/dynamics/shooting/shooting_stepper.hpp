@@ -50,6 +50,10 @@ struct ShootingOptions {
   /// The default is the most correct grid (second order in s, energy-stable); `euler` reproduces
   /// the thesis.
   ShootingGrid grid = ShootingGrid::staggered;
+  /// Intervals of the staggered grids' march (multiple shooting; step_bound.hpp): 0 picks them
+  /// from the step (1, single shooting, within its lower step bound); > 0 forces that many
+  /// (tests; the Euler grid and actuator unknowns always shoot singly).
+  int intervals = 0;
 };
 
 /// Starts at rest from `initial` (options.nodes nodes).

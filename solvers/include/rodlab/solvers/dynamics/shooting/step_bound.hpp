@@ -39,9 +39,31 @@ inline constexpr double kEulerGridAllowance = 2.5;
 /// The smallest dt whose kappa is within the bound (bisection on the monotone kappa(dt)).
 double single_shooting_min_step(const DynamicProblem& problem, ShootingGrid grid, double tol);
 
-/// Empty when `scheme` (implicit-midpoint or bdf-alpha) can run at dt; else why not, naming the
-/// smallest step that fits and the schemes to use instead.
+/// Empty when `scheme` (implicit-midpoint or bdf-alpha) can run at dt by single shooting; else
+/// why not, naming the smallest step that fits and the schemes to use instead.
 std::string single_shooting_step_problem(const DynamicProblem& problem, std::string_view scheme,
                                          ShootingGrid grid, double dt, double tol);
+
+/// Multiple shooting (the staggered and corrected grids' stepper, docs/dynamics.md "Multiple
+/// shooting below the bound"): beyond the bound the rod is cut into intervals whose exponents
+/// stay kIntervalMargin below it, ceil(kappa / (bound - margin)) of them (at least one per
+/// kMinIntervalExponent of kappa where the tolerance leaves almost no room, at most one per
+/// segment); 1 within the bound (single shooting, unchanged). The margin: the joins' residuals
+/// carry the march's rounding amplified over an interval, and at dt = 0.1 ms (the viscous
+/// cantilever, N = 20, kappa 25.1) three intervals (8.4 each) stalled at 1-3e-10 from t = 0.11 s
+/// on, four (6.3) ran.
+inline constexpr double kIntervalMargin = 4.0;
+inline constexpr double kMinIntervalExponent = 1.0;
+int shooting_intervals(double kappa, ShootingGrid grid, double tol, int segments);
+
+/// Whether a shooting stepper marches the problem by multiple shooting where single shooting's
+/// bound is passed: the staggered and corrected grids without actuator unknowns (muscles, length
+/// control: their extra unknowns are single shooting's only).
+bool multiple_shooting_fits(const DynamicProblem& problem, ShootingGrid grid);
+
+/// Empty when the stepper runs at dt (by single shooting within the bound, by multiple shooting
+/// beyond it where that fits); else single_shooting_step_problem's reason.
+std::string shooting_step_problem(const DynamicProblem& problem, std::string_view scheme,
+                                  ShootingGrid grid, double dt, double tol);
 
 }  // namespace rodlab::solvers::dynamics
