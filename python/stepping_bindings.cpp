@@ -34,7 +34,7 @@ class Simulation {
       dt_ = solvers::dynamics::auto_time_step(*problem_, options_.scheme, options_.nodes);
     if (!(dt_ > 0.0)) throw py::value_error("dt must be > 0");
     options_.dt = dt_;
-    // refused up front where single shooting cannot converge, as solve_dynamic does
+    // refused up front where shooting cannot converge, as solve_dynamic does
     if (const std::string why = solvers::dynamics::step_problem(*problem_, options_, dt_);
         !why.empty())
       throw py::value_error(why);

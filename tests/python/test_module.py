@@ -198,5 +198,12 @@ def test_simulation_repeats_solve_dynamic():
         for _ in range(3):
             other.step()
         assert other.time == pytest.approx(3 * dt) and other.tip[0] < 0.0  # falls under gravity
-    with pytest.raises(ValueError, match="single shooting"):  # below its lower step bound
-        rodlab.Simulation(scene, scheme="bdf-alpha", nodes=10, dt=1e-3)
+    # below single shooting's lower step bound (kappa 110 at 0.1 ms): the staggered grid steps by
+    # multiple shooting, the thesis' Euler grid is refused up front
+    below = rodlab.Simulation(scene, scheme="bdf-alpha", nodes=10, dt=1e-4)
+    below.step()
+    assert below.tip[0] < 0.0
+    euler = rodlab.Scene.load(os.path.join(SCENES, "cantilever-gravity.yaml"))
+    euler.set("solver.grid", "euler")
+    with pytest.raises(ValueError, match="lower step bound"):
+        rodlab.Simulation(euler, scheme="bdf-alpha", nodes=10, dt=1e-4)
