@@ -159,10 +159,12 @@ class StaggeredShootingStepper final : public Stepper {
                         "shooting; docs/dynamics.md \"Multiple shooting below the bound\")");
     ShootingOutcome out = intervals() > 1 ? solve_intervals(dt) : solve_shots(steps_ >= 2);
     // A multiple-shooting step that stalls is retried with twice the intervals (for the rest of
-    // the run), down to one per segment: shorter intervals amplify the rounding less.
-    while (!out.failure.empty() && intervals() > 1 && intervals() < n_ - 1) {
+    // the run), up to one per segment or kMaxIntervals: shorter intervals amplify the rounding
+    // less.
+    const int most = std::min(n_ - 1, kMaxIntervals);
+    while (!out.failure.empty() && intervals() > 1 && intervals() < most) {
       const int spent = out.shots;
-      refined_intervals_ = std::min(2 * intervals(), n_ - 1);
+      refined_intervals_ = std::min(2 * intervals(), most);
       set_intervals(refined_intervals_);
       out = solve_intervals(dt);
       out.shots += spent;
@@ -614,7 +616,7 @@ class StaggeredShootingStepper final : public Stepper {
   /// pays no pow).
   int interval_count_for(double dt) {
     if (m_ > 0 || opt_.grid == ShootingGrid::euler) return 1;
-    if (opt_.intervals > 0) return std::min(opt_.intervals, n_ - 1);
+    if (opt_.intervals > 0) return std::min({opt_.intervals, n_ - 1, kMaxIntervals});
     if (dt != intervals_dt_) {
       intervals_dt_ = dt;
       intervals_at_dt_ =

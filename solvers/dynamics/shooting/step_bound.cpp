@@ -63,7 +63,8 @@ int shooting_intervals(double kappa, ShootingGrid grid, double tol, int segments
   const double bound = single_shooting_exponent_bound(grid, tol);
   if (!(kappa > bound)) return 1;
   const double per_interval = std::max(bound - kIntervalMargin, kMinIntervalExponent);
-  return std::clamp(static_cast<int>(std::ceil(kappa / per_interval)), 2, std::max(2, segments));
+  const double wanted = std::ceil(kappa / per_interval);
+  return std::max(2, static_cast<int>(std::min<double>({wanted, segments, kMaxIntervals})));
 }
 
 bool multiple_shooting_fits(const DynamicProblem& problem, ShootingGrid grid) {

@@ -75,8 +75,9 @@ RestState initial_state(const scene::Scene& scene, const DynamicProblem& problem
 bool marches_in_s(std::string_view scheme);
 
 /// Why options.scheme cannot run at the step dt on `problem`, or "" when it can: single
-/// shooting (implicit-midpoint, bdf-alpha) has a lower step bound (step_bound.hpp). Runs are
-/// refused with it before they start (solve_dynamic, rodlab.Simulation).
+/// shooting (implicit-midpoint, bdf-alpha) has a lower step bound, which multiple shooting lifts
+/// on the staggered grids without actuator unknowns (step_bound.hpp). Runs are refused with it
+/// before they start (solve_dynamic, rodlab.Simulation).
 std::string step_problem(const DynamicProblem& problem, const DynamicSolveOptions& options,
                          double dt);
 

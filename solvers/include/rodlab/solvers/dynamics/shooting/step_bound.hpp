@@ -15,10 +15,11 @@
 // staggered grid every run with kappa <= 12.0 ran and every one with kappa >= 12.3 failed; the
 // thesis' Euler grid, whose explicit Euler march amplifies less than e^(k ds) per segment, ran up
 // to 14.8 and failed at 15.9; the bound is the same at N = 20..50 (the viscous cantilever: dt =
-// 2 ms runs, 1 ms fails at every N). Runs beyond the bound are refused before they start (exit
-// 2), naming the smallest step within it (necessary, not sufficient: a heavy, very soft rod also
-// fails at large steps, where one step's motion is too nonlinear for Newton from the last state)
-// and the schemes without the bound.
+// 2 ms runs, 1 ms fails at every N). Beyond the bound the staggered grids march by multiple
+// shooting (shooting_intervals); runs it does not reach are refused before they start (exit 2),
+// naming the smallest step within the bound (necessary, not sufficient: a heavy, very soft rod
+// also fails at large steps, where one step's motion is too nonlinear for Newton from the last
+// state) and the schemes without it.
 #include <string>
 
 #include "rodlab/solvers/dynamics/dynamic_problem.hpp"
@@ -47,13 +48,18 @@ std::string single_shooting_step_problem(const DynamicProblem& problem, std::str
 /// Multiple shooting (the staggered and corrected grids' stepper, docs/dynamics.md "Multiple
 /// shooting below the bound"): beyond the bound the rod is cut into intervals whose exponents
 /// stay kIntervalMargin below it, ceil(kappa / (bound - margin)) of them (at least one per
-/// kMinIntervalExponent of kappa where the tolerance leaves almost no room, at most one per
-/// segment); 1 within the bound (single shooting, unchanged). The margin: the joins' residuals
+/// kMinIntervalExponent of kappa where the tolerance leaves almost no room; at most one per
+/// segment and kMaxIntervals: Newton's dense matrices have 6 + 18 (M - 1) rows, 564 at 32
+/// intervals, where inverting a fresh Jacobian takes 33-36 ms); 1 within the bound
+/// (single shooting, unchanged). kappa overstates the march's amplification where k ds > 1
+/// (a segment amplifies by about 1 + k ds, not e^(k ds)): the viscous cantilever at N = 20 runs
+/// at dt = 1.1e-6 s with 19 intervals, kappa / 19 = 12.7. The margin: the joins' residuals
 /// carry the march's rounding amplified over an interval, and at dt = 0.1 ms (the viscous
 /// cantilever, N = 20, kappa 25.1) three intervals (8.4 each) stalled at 1-3e-10 from t = 0.11 s
 /// on, four (6.3) ran.
 inline constexpr double kIntervalMargin = 4.0;
 inline constexpr double kMinIntervalExponent = 1.0;
+inline constexpr int kMaxIntervals = 32;
 int shooting_intervals(double kappa, ShootingGrid grid, double tol, int segments);
 
 /// Whether a shooting stepper marches the problem by multiple shooting where single shooting's
