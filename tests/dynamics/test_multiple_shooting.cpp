@@ -59,21 +59,10 @@ bool beyond_the_bound(const scene::Scene& s, double dt) {
          solvers::dynamics::single_shooting_exponent_bound(ShootingGrid::staggered, 1e-10);
 }
 
-/// A rod held at both ends, the clamp 1 cm sideways (scenes/clamped-clamped-dynamics.yaml
-/// without its push), released from its statics under gravity with viscosity.
+/// A rod held at both ends, the clamp 1 cm sideways, viscous, under gravity and a sideways push
+/// from t = 10 ms (the example scene).
 scene::Scene clamped_sideways() {
-  return io::load_scene_from_string(R"(schema: rodlab.scene/1
-name: clamped-sideways
-rod:
-  length: 0.1
-  section: {shape: circle, diameter: 0.01}
-  material: {E: 1.0e6, G: 0.33e6, rho: 1000, viscosity: 300}
-tip:
-  clamped: {position: [0.01, 0, 0.1], rotation: identity}
-loads:
-  gravity: [-9.81, 0, 0]
-)",
-                                    "clamped-sideways.yaml");
+  return io::load_scene(std::string(RODLAB_SOURCE_DIR) + "/scenes/clamped-clamped-dynamics.yaml");
 }
 
 }  // namespace
