@@ -372,11 +372,7 @@ class StaggeredShootingStepper final : public Stepper {
   Vec shoot(const Vec& x) {
     // node 0: lambda_0 before its entry load (none at the base), at rest, at the base pose
     MarchNode node{x.template head<6>().cwiseProduct(scale_), Vector6::Zero(), P_.base()};
-    if (m_ > 0) {
-      for (int e = 0; e < m_; ++e)
-        unknown_[e] = x[6 + e] * (is_muscle_[e] ? P_.length() : scale_[3]);
-      F_ = P_.forces(t_u_, unknown_.data(), paths_.rest().data());
-    }
+    if (m_ > 0) set_actuator_unknowns(x.data() + 6);
     double dissipated = 0.0, work = 0.0;
     eta_u_[0].setZero();
     march_[0] = node;
@@ -396,16 +392,26 @@ class StaggeredShootingStepper final : public Stepper {
     Vec r;
     r.resize(6 + m_);
     r.template head<6>() = tip_residual(node, work);
-    if (m_ > 0) {
-      const double a = end_;
-      for (int j = 0; j + 1 < n_; ++j) xi_end_[j] = a * xi_u_[j] + (1.0 - a) * xi_[j];
-      const double L = P_.length();
-      for (int e = 0; e < m_; ++e)
-        r[6 + e] = is_muscle_[e] ? x[6 + e] - paths_.length(e, xi_u_) / L
-                                 : (paths_.length(e, xi_end_) - P_.actuators()[which_[e]].target_length(
-                                                                    t_end_, paths_.rest()[e])) / L;
-    }
+    if (m_ > 0) actuator_rows(x.data() + 6, r.data() + 6);
     return r;
+  }
+
+  /// The actuator unknowns u (header: scaled) into the forces of the march.
+  void set_actuator_unknowns(const double* u) {
+    for (int e = 0; e < m_; ++e) unknown_[e] = u[e] * (is_muscle_[e] ? P_.length() : scale_[3]);
+    F_ = P_.forces(t_u_, unknown_.data(), paths_.rest().data());
+  }
+
+  /// Their rows r (header) from the last march's strains.
+  void actuator_rows(const double* u, double* r) {
+    const double a = end_;
+    for (int j = 0; j + 1 < n_; ++j) xi_end_[j] = a * xi_u_[j] + (1.0 - a) * xi_[j];
+    const double L = P_.length();
+    for (int e = 0; e < m_; ++e)
+      r[e] = is_muscle_[e] ? u[e] - paths_.length(e, xi_u_) / L
+                           : (paths_.length(e, xi_end_) -
+                              P_.actuators()[which_[e]].target_length(t_end_, paths_.rest()[e])) /
+                                 L;
   }
 
   /// The tip's rows of the residual from the march's last node and the work of the rest of the
@@ -598,11 +604,12 @@ class StaggeredShootingStepper final : public Stepper {
   // Beyond single shooting's lower step bound the march amplifies an error at the base by
   // e^kappa > tol / eps (step_bound.hpp). The rod is then cut at nodes first_[1..M-1] into M
   // intervals of exponent about kappa / M; each interval is marched from its own start state
-  // (the unknowns: lambda_0 as in single shooting, and per interior start node its lambda_pre,
-  // eta and pose), and the residual is the tip's rows and the 18 jumps where an interval's march
-  // ends on the next one's start. Same equations, same solution as single shooting (to tol); the
-  // Jacobian by intervals (a column re-marches its interval only), Broyden between as for single
-  // shooting but on the Jacobian's inverse (ShootingNewton::keep_inverse), and a stall on the
+  // (the unknowns: lambda_0 as in single shooting, per interior start node its lambda_pre, eta
+  // and pose, then the actuator unknowns), and the residual is the tip's rows, the 18 jumps
+  // where an interval's march ends on the next one's start, then the actuators' rows. Same
+  // equations, same solution as single shooting (to tol); the Jacobian by intervals (a column
+  // re-marches its interval only), Broyden between as for single shooting but on the Jacobian's
+  // inverse (ShootingNewton::keep_inverse), and a stall on the
   // residual's rounding floor accepted (ShootingNewton::accept_rounding_floor). The joins' (and
   // the free tip's) axial force is scaled by E A, not E I / L^2: at small dt the axial rows
   // cannot be resolved to 1e-10 E I / L^2 (5e-15 N on the Table 2.1 rod, an axial strain of
@@ -615,7 +622,7 @@ class StaggeredShootingStepper final : public Stepper {
   /// The intervals a step of dt takes (step_bound.hpp; kept for the last dt: the step's hot path
   /// pays no pow).
   int interval_count_for(double dt) {
-    if (m_ > 0 || opt_.grid == ShootingGrid::euler) return 1;
+    if (opt_.grid == ShootingGrid::euler) return 1;
     if (opt_.intervals > 0) return std::min({opt_.intervals, n_ - 1, kMaxIntervals});
     if (dt != intervals_dt_) {
       intervals_dt_ = dt;
@@ -691,6 +698,7 @@ class StaggeredShootingStepper final : public Stepper {
     dissipated_u_ = dissipated;
     Eigen::VectorXd r(x.size());
     r.head<6>() = tip_residual(interval_end_.back(), work);
+    if (m_ > 0) actuator_rows(x.data() + actuator_at(), r.data() + actuator_at());
     if (!clamped_) r[5] *= scale_[5] / join_scale_[5];  // the axial force in E A (join_scale_)
     for (int i = 1; i < M; ++i) {
       const MarchNode& end = interval_end_[i - 1];
@@ -708,12 +716,17 @@ class StaggeredShootingStepper final : public Stepper {
     // warm start as shoot()
     const std::vector<Vector6>& guess = inner_failed_ ? xi_ : xi_u_;
     inner_failed_ = false;
+    if (m_ > 0) set_actuator_unknowns(x.data() + actuator_at());
     for (int i = 0; i < intervals(); ++i) march_interval(i, x, guess);
     return interval_residual(x);
   }
 
+  /// Where the actuator unknowns (and their rows) start: after the joins'.
+  int actuator_at() const { return 6 + kJoin * (intervals() - 1); }
+
   /// Forward differences by intervals: an unknown of interval i moves its march and the jump at
-  /// its start only (and a clamped tip's pose), so its column re-marches interval i alone, the
+  /// its start only (and a clamped tip's pose and the actuators' rows), so its column re-marches
+  /// interval i alone (an actuator unknown's column every interval), the
   /// others staying at x (Newton may ask at an iterate after a shot elsewhere: x is shot first);
   /// the profiles of x are restored. The shots counted: segments marched / segments of the rod.
   void interval_jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& r, Eigen::MatrixXd& J,
@@ -734,6 +747,18 @@ class StaggeredShootingStepper final : public Stepper {
       march_interval(i, x, xi_u_);
       segments += static_cast<long>(count + 1) * (first_[i + 1] - first_[i]);
     }
+    // an actuator unknown moves every interval's march
+    for (int k = actuator_at(); k < actuator_at() + m_; ++k) {
+      const double h = kShootingFdStep * std::max(1.0, std::abs(x[k]));
+      xp[k] = x[k] + h;
+      J.col(k) = (shoot_intervals(xp) - r) / h;
+      xp[k] = x[k];
+      segments += n_ - 1;
+    }
+    if (m_ > 0) {
+      shoot_intervals(x);
+      segments += n_ - 1;
+    }
     interval_residual(x);
     inner_failed_ = failed;
     shots += static_cast<int>((segments + n_ - 2) / (n_ - 1));
@@ -746,7 +771,7 @@ class StaggeredShootingStepper final : public Stepper {
   Eigen::VectorXd interval_guess() const {
     const int M = intervals();
     const auto& K = P_.model().K_diag();
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(6 + kJoin * (M - 1));
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(6 + kJoin * (M - 1) + m_);
     for (int i = 0; i < M; ++i) {
       const int b = first_[i];
       const Vector6 lambda = K.cwiseProduct(xi_[b] - P_.model().segment_xi_star(b, n_));
@@ -757,6 +782,10 @@ class StaggeredShootingStepper final : public Stepper {
         x.segment<6>(12 + kJoin * (i - 1)) = eta_[b].cwiseQuotient(eta_scale_);
       }
     }
+    // a muscle: its length now; a length-controlled force: the last one
+    for (int e = 0; e < m_; ++e)
+      x[actuator_at() + e] = is_muscle_[e] ? paths_.length(e, xi_) / P_.length()
+                                           : unknown_[e] / scale_[3];
     return x;
   }
 

@@ -67,17 +67,10 @@ int shooting_intervals(double kappa, ShootingGrid grid, double tol, int segments
   return std::max(2, static_cast<int>(std::min<double>({wanted, segments, kMaxIntervals})));
 }
 
-bool multiple_shooting_fits(const DynamicProblem& problem, ShootingGrid grid) {
-  return grid != ShootingGrid::euler && problem.unknown_count() == 0;
-}
-
 std::string shooting_step_problem(const DynamicProblem& problem, std::string_view scheme,
                                   ShootingGrid grid, double dt, double tol) {
-  if (multiple_shooting_fits(problem, grid)) return {};
-  std::string why = single_shooting_step_problem(problem, scheme, grid, dt, tol);
-  if (!why.empty() && grid != ShootingGrid::euler)
-    why += " (multiple shooting, which lifts the bound, does not cover muscles or length control)";
-  return why;
+  if (grid != ShootingGrid::euler) return {};  // multiple shooting beyond the bound
+  return single_shooting_step_problem(problem, scheme, grid, dt, tol);
 }
 
 }  // namespace rodlab::solvers::dynamics

@@ -62,13 +62,9 @@ inline constexpr double kMinIntervalExponent = 1.0;
 inline constexpr int kMaxIntervals = 32;
 int shooting_intervals(double kappa, ShootingGrid grid, double tol, int segments);
 
-/// Whether a shooting stepper marches the problem by multiple shooting where single shooting's
-/// bound is passed: the staggered and corrected grids without actuator unknowns (muscles, length
-/// control: their extra unknowns are single shooting's only).
-bool multiple_shooting_fits(const DynamicProblem& problem, ShootingGrid grid);
-
-/// Empty when the stepper runs at dt (by single shooting within the bound, by multiple shooting
-/// beyond it where that fits); else single_shooting_step_problem's reason.
+/// Empty when the stepper runs at dt: by single shooting within the bound, by multiple shooting
+/// beyond it on the staggered and corrected grids; else (the Euler grid beyond its bound)
+/// single_shooting_step_problem's reason.
 std::string shooting_step_problem(const DynamicProblem& problem, std::string_view scheme,
                                   ShootingGrid grid, double dt, double tol);
 
