@@ -7,10 +7,12 @@
 // A finite-difference Jacobian, Broyden's rank-one updates, reuse across steps (rebuilt when the
 // step constant c of the time rule changes or a Newton step does not halve the residual),
 // backtracking along a fresh Jacobian's step that does not reduce the residual, and a linear
-// predictor from the last two steps' solutions.
+// predictor from the last two steps' solutions. Multiple shooting (the staggered march below
+// single shooting's step bound) supplies its own Jacobian (by intervals), keeps the inverse and
+// accepts a stall on the residual's rounding floor.
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <Eigen/LU>
