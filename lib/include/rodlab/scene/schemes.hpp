@@ -64,14 +64,15 @@ inline constexpr std::array<SchemeInfo, kSchemeCount> kSchemeCatalogue{{
      "start (first order in t as the thesis: solver.variational_step symplectic-euler)"},
     {SchemeId::implicit_midpoint, "implicit-midpoint", Problem::dynamics, "2 (t) / 2 (s)", true,
      false,
-     "implicit midpoint in time, single shooting in space on the staggered grid (thesis "
-     "Algorithm 2, explicit RKMK, first order in s: solver.grid euler)"},
+     "implicit midpoint in time, shooting in space on the staggered grid (single; multiple "
+     "below its step bound) (thesis Algorithm 2, explicit RKMK, first order in s: solver.grid "
+     "euler)"},
     {SchemeId::implicit_midpoint_collocation, "implicit-midpoint-collocation", Problem::dynamics,
      "2 (t) / 2 (s)", true, false,
      "implicit midpoint in time, each step's BVP solved globally by KINSOL + KLU"},
     {SchemeId::bdf_alpha, "bdf-alpha", Problem::dynamics, "2 (t) / 2 (s)", true, false,
-     "BDF-alpha in time (Till, Aloi & Rucker 2019), single shooting in space on the staggered "
-     "grid (first order in s: solver.grid euler)"},
+     "BDF-alpha in time (Till, Aloi & Rucker 2019), shooting in space on the staggered grid "
+     "(single; multiple below its step bound) (first order in s: solver.grid euler)"},
     {SchemeId::ida, "ida", Problem::dynamics, "BDF 1-5 (t) / 2 (s)", true, true,
      "reference: method of lines in s, SUNDIALS IDA with KLU at tight tolerances"},
 }};
