@@ -216,20 +216,6 @@ const bool registered = [] {
     for (int n : {10, 20, 50, 100}) b->Arg(n);
     b->Unit(benchmark::kMicrosecond);
   }
-  // implicit-midpoint at fine steps, below single shooting's lower step bound (1.02 ms on this
-  // rod): multiple shooting, 2 and 4 intervals (docs/dynamics.md "Multiple shooting below the
-  // bound"); the same steps as collocation's rows below.
-  for (const double dt : {1e-3, 1e-4}) {
-    auto* m = benchmark::RegisterBenchmark(
-        (std::string("step/implicit-midpoint/grid=staggered/dt=") + (dt == 1e-3 ? "1ms" : "0.1ms"))
-            .c_str(),
-        [dt](benchmark::State& state) {
-          step_benchmark(state, "implicit-midpoint", dt, ShootingGrid::staggered,
-                         VariationalStep::verlet, 300.0, true);
-        });
-    for (int n : {20, 100}) m->Arg(n);
-    m->Unit(benchmark::kMicrosecond);
-  }
   // implicit-midpoint-collocation: KINSOL + KLU on the whole rod per step (cost per node-step).
   auto* c = benchmark::RegisterBenchmark("step/implicit-midpoint-collocation", step_benchmark,
                                          std::string("implicit-midpoint-collocation"), 0.0,
@@ -237,18 +223,28 @@ const bool registered = [] {
                                          true);
   for (int n : {20, 100}) c->Arg(n);
   c->Unit(benchmark::kMicrosecond);
-  // The same at fine steps (the scheme has no lower time-step bound; fine-dt studies).
-  for (const double dt : {1e-3, 1e-4}) {
-    auto* f = benchmark::RegisterBenchmark(
-        (std::string("step/implicit-midpoint-collocation/dt=") + (dt == 1e-3 ? "1ms" : "0.1ms"))
-            .c_str(),
-        [dt](benchmark::State& state) {
-          step_benchmark(state, "implicit-midpoint-collocation", dt, ShootingGrid::euler,
-                         VariationalStep::verlet, 300.0, true);
-        });
-    for (int n : {20, 100}) f->Arg(n);
-    f->Unit(benchmark::kMicrosecond);
-  }
+  // The midpoint rule at fine steps: collocation (no lower time-step bound; fine-dt studies) and
+  // implicit-midpoint below single shooting's lower step bound (1.02 ms on this rod): multiple
+  // shooting, 2 and 4 intervals (docs/dynamics.md "Multiple shooting below the bound").
+  struct FineStep {
+    const char* name;
+    const char* scheme;
+    ShootingGrid grid;
+  };
+  for (const FineStep fine : {FineStep{"implicit-midpoint-collocation",
+                                       "implicit-midpoint-collocation", ShootingGrid::euler},
+                              FineStep{"implicit-midpoint/grid=staggered", "implicit-midpoint",
+                                       ShootingGrid::staggered}})
+    for (const double dt : {1e-3, 1e-4}) {
+      auto* f = benchmark::RegisterBenchmark(
+          (std::string("step/") + fine.name + "/dt=" + (dt == 1e-3 ? "1ms" : "0.1ms")).c_str(),
+          [fine, dt](benchmark::State& state) {
+            step_benchmark(state, fine.scheme, dt, fine.grid, VariationalStep::verlet, 300.0,
+                           true);
+          });
+      for (int n : {20, 100}) f->Arg(n);
+      f->Unit(benchmark::kMicrosecond);
+    }
   return true;
 }();
 

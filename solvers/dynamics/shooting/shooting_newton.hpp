@@ -78,6 +78,10 @@ class ShootingNewton {
   /// an O(n^3) factorisation (n = 6 + 18 (M - 1) unknowns; a fresh Jacobian is inverted once).
   void keep_inverse(bool on) { inverse_ = on; }
 
+  /// What the failure messages call the solve ("single shooting"; multiple shooting names its
+  /// intervals).
+  void name(std::string what) { name_ = std::move(what); }
+
   /// The first guess of the first step (also the predictor's history).
   void start(const Vec& x0) {
     prev_ = prev2_ = x0;
@@ -125,7 +129,7 @@ class ShootingNewton {
       check_deadline();  // the run's wall-time guard (common/deadline.hpp)
       if (iterations >= max_iterations || !r.allFinite()) {
         out.failure =
-            rodlab::format("single shooting did not converge (tip residual {:g})", norm(r));
+            rodlab::format("{} did not converge (tip residual {:g})", name_, norm(r));
         return out;
       }
       const Vec dx = inverse_ ? Vec(-(H_ * r)) : Vec(-Eigen::PartialPivLU<Mat>(J_).solve(r));
@@ -164,9 +168,9 @@ class ShootingNewton {
         }
         shoot(x);  // leave the profiles of the best iterate
         out.failure = rodlab::format(
-            "single shooting did not converge (no step along Newton's direction reduces the tip "
+            "{} did not converge (no step along Newton's direction reduces the tip "
             "residual {:g})",
-            norm(r));
+            name_, norm(r));
         return out;
       }
       ++iterations;
@@ -235,6 +239,7 @@ class ShootingNewton {
   bool valid_ = false;
   bool inverse_ = false;
   bool accept_rounding_floor_ = false;
+  std::string name_ = "single shooting";
   double c_ = 0.0;
   Vec prev_, prev2_;
 };

@@ -6,7 +6,6 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include <Eigen/LU>
@@ -391,7 +390,7 @@ class StaggeredShootingStepper final : public Stepper {
     dissipated_u_ = dissipated;
     Vec r;
     r.resize(6 + m_);
-    r.template head<6>() = tip_residual(node, work);
+    r.template head<6>() = tip_residual(node, work, scale_);
     if (m_ > 0) actuator_rows(x.data() + 6, r.data() + 6);
     return r;
   }
@@ -415,10 +414,11 @@ class StaggeredShootingStepper final : public Stepper {
   }
 
   /// The tip's rows of the residual from the march's last node and the work of the rest of the
-  /// rod; sets work_u_. A free tip: the scaled wrench mismatch; a clamped one (no work): the
+  /// rod; sets work_u_. A free tip: the wrench mismatch over `scale` (single shooting's scale_,
+  /// multiple shooting's join_scale_); a clamped one (no work): the
   /// end-of-step tip pose, exp(ds (a xi_u + (1 - a) xi)) chained from the base, on the clamp
   /// (lambda_pre is its reaction).
-  Vector6 tip_residual(const MarchNode& tip, double work) {
+  Vector6 tip_residual(const MarchNode& tip, double work, const Vector6& scale) {
     if (clamped_) {
       work_u_ = work;
       const double a = end_;
@@ -429,7 +429,7 @@ class StaggeredShootingStepper final : public Stepper {
     }
     const Vector6 W = P_.tip_load(tip.g.rotation(), t_u_);
     work_u_ = work + W.dot(tip.eta);
-    return (tip.lambda_pre - W).cwiseQuotient(scale_);
+    return (tip.lambda_pre - W).cwiseQuotient(scale);
   }
 
   /// Actuator unknowns: which actuators, their segment weights and grid rest lengths (at xi*),
@@ -697,9 +697,8 @@ class StaggeredShootingStepper final : public Stepper {
     }
     dissipated_u_ = dissipated;
     Eigen::VectorXd r(x.size());
-    r.head<6>() = tip_residual(interval_end_.back(), work);
+    r.head<6>() = tip_residual(interval_end_.back(), work, join_scale_);
     if (m_ > 0) actuator_rows(x.data() + actuator_at(), r.data() + actuator_at());
-    if (!clamped_) r[5] *= scale_[5] / join_scale_[5];  // the axial force in E A (join_scale_)
     for (int i = 1; i < M; ++i) {
       const MarchNode& end = interval_end_[i - 1];
       const MarchNode start = interval_start(i, x);
@@ -755,11 +754,12 @@ class StaggeredShootingStepper final : public Stepper {
       xp[k] = x[k];
       segments += n_ - 1;
     }
-    if (m_ > 0) {
+    if (m_ > 0) {  // every interval moved: shoot x again
       shoot_intervals(x);
       segments += n_ - 1;
+    } else {
+      interval_residual(x);  // the step's powers at x
     }
-    interval_residual(x);
     inner_failed_ = failed;
     shots += static_cast<int>((segments + n_ - 2) / (n_ - 1));
   }
@@ -800,17 +800,12 @@ class StaggeredShootingStepper final : public Stepper {
       multiple_.accept_rounding_floor(true);
       multiple_.keep_inverse(true);
     }
+    multiple_.name(rodlab::format("multiple shooting ({} intervals)", intervals()));
     ShootingOutcome out = multiple_.solve(
         [this](const Eigen::VectorXd& x) { return shoot_intervals(x); },
         [this](const Eigen::VectorXd& x, const Eigen::VectorXd& r, Eigen::MatrixXd& J,
                int& shots) { interval_jacobian(x, r, J, shots); },
         c_, multiple_steps_ >= 2, opt_.tol, opt_.max_iterations);
-    if (!out.failure.empty()) {
-      const auto at = out.failure.find("single shooting");
-      if (at != std::string::npos)
-        out.failure.replace(at, std::string_view("single shooting").size(),
-                            rodlab::format("multiple shooting ({} intervals)", intervals()));
-    }
     ++multiple_steps_;
     return out;
   }
