@@ -8,8 +8,9 @@
 // step constant c of the time rule changes or a Newton step does not halve the residual),
 // backtracking along a fresh Jacobian's step that does not reduce the residual, and a linear
 // predictor from the last two steps' solutions. Multiple shooting (the staggered march below
-// single shooting's step bound) supplies its own Jacobian (by intervals), keeps the inverse and
-// accepts a stall on the residual's rounding floor.
+// single shooting's step bound) supplies its own Jacobian (by intervals, sparse), its own model
+// of it (inverse_broyden.hpp: KLU's factors and Broyden's updates of the inverse) and accepts a
+// stall on the residual's rounding floor.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -53,15 +54,35 @@ struct ShootingOutcome {
   int shots = 0;  ///< integrations spent, Jacobian columns included
 };
 
-/// Newton's state across steps for one kind of unknown vector.
+/// Newton's model of a small dense Jacobian (single shooting's 6 + m unknowns): the Jacobian
+/// itself, LU-factorised for each step, and Broyden's rank-one updates of it.
 template <class Vec, class Mat>
+class DenseSecant {
+ public:
+  /// The Jacobian a fresh build fills, then refresh().
+  Mat& jacobian() { return J_; }
+  bool refresh() { return J_.allFinite(); }
+  /// Newton's step -J^-1 r.
+  Vec step(const Vec& r) const { return -Eigen::PartialPivLU<Mat>(J_).solve(r); }
+  /// Broyden's update for the step s from the residual r to r_new (always taken).
+  bool update(const Vec& s, const Vec& r, const Vec& r_new) {
+    J_ += ((r_new - r) - J_ * s) * s.transpose() / s.squaredNorm();
+    return true;
+  }
+
+ private:
+  Mat J_;
+};
+
+/// Newton's state across steps for one kind of unknown vector; Mat is the Jacobian's type and
+/// Secant Newton's model of it (DenseSecant, or InverseBroyden for multiple shooting).
+template <class Vec, class Mat, class Secant = DenseSecant<Vec, Mat>>
 class ShootingNewton {
  public:
   /// The next solve starts from `other`'s last solution with its Jacobian, predictor off (a
   /// perturbed repeat of the step `other` has just solved: control's finite differences).
   void warm_from(const ShootingNewton& other) {
-    J_ = other.J_;
-    H_ = other.H_;
+    model_ = other.model_;
     valid_ = other.valid_;
     c_ = other.c_;
     prev_ = prev2_ = other.prev_;
@@ -72,11 +93,6 @@ class ShootingNewton {
   /// (kRoundingUlps units of rounding, either way) changes it by: the residual cannot be resolved
   /// further in double precision (the interior joins amplify like the march, e^(kappa / M)).
   void accept_rounding_floor(bool on) { accept_rounding_floor_ = on; }
-
-  /// Multiple shooting: keep the Jacobian's inverse H and apply Broyden's update to it
-  /// (Sherman-Morrison: the same iterates in exact arithmetic), O(n^2) per Newton step instead of
-  /// an O(n^3) factorisation (n = 6 + 18 (M - 1) unknowns; a fresh Jacobian is inverted once).
-  void keep_inverse(bool on) { inverse_ = on; }
 
   /// What the failure messages call the solve ("single shooting"; multiple shooting names its
   /// intervals).
@@ -132,7 +148,14 @@ class ShootingNewton {
             rodlab::format("{} did not converge (tip residual {:g})", name_, norm(r));
         return out;
       }
-      const Vec dx = inverse_ ? Vec(-(H_ * r)) : Vec(-Eigen::PartialPivLU<Mat>(J_).solve(r));
+      if (!valid_) {  // the model keeps no more updates: a fresh Jacobian here
+        if (!fresh_jacobian(jacobian, x, r, c, out.shots)) {
+          out.failure = "the Jacobian is not finite";
+          return out;
+        }
+        fresh = true;
+      }
+      const Vec dx = model_.step(r);
       if (!dx.allFinite()) {
         out.failure = "the shooting Jacobian is singular";
         return out;
@@ -174,14 +197,9 @@ class ShootingNewton {
         return out;
       }
       ++iterations;
-      // Broyden's rank-one update of the secant model (of its inverse, Sherman-Morrison).
-      if (inverse_) {
-        const Vec Hy = H_ * (r_new - r);
-        const double denominator = step.dot(Hy);
-        if (denominator != 0.0) H_ += (step - Hy) * (step.transpose() * H_) / denominator;
-      } else {
-        J_ += ((r_new - r) - J_ * step) * step.transpose() / step.squaredNorm();
-      }
+      // Broyden's rank-one update of the secant model; a model that can keep no more asks for a
+      // fresh Jacobian at the next iterate
+      valid_ = model_.update(step, r, r_new);
       x += step;
       r = r_new;
       fresh = false;
@@ -194,14 +212,8 @@ class ShootingNewton {
  private:
   template <class Jacobian>
   bool fresh_jacobian(Jacobian& jacobian, const Vec& x, const Vec& r, double c, int& shots) {
-    const auto n = x.size();
-    if (J_.rows() != n) J_.setZero(n, n);
-    jacobian(x, r, J_, shots);
-    valid_ = J_.allFinite();
-    if (valid_ && inverse_) {
-      H_ = Eigen::PartialPivLU<Mat>(J_).inverse();
-      valid_ = H_.allFinite();
-    }
+    jacobian(x, r, model_.jacobian(), shots);
+    valid_ = model_.refresh();
     c_ = c;  // the Jacobian depends on the step through c
     return valid_;
   }
@@ -224,6 +236,7 @@ class ShootingNewton {
   template <class Shoot>
   static void finite_difference_columns(Shoot& shoot, const Vec& x, const Vec& r, Mat& J,
                                         int& shots) {
+    J.resize(x.size(), x.size());
     for (Eigen::Index k = 0; k < x.size(); ++k) {
       const double h = kShootingFdStep * std::max(1.0, std::abs(x[k]));
       Vec xp = x;
@@ -235,9 +248,8 @@ class ShootingNewton {
     ++shots;
   }
 
-  Mat J_, H_;
+  Secant model_;
   bool valid_ = false;
-  bool inverse_ = false;
   bool accept_rounding_floor_ = false;
   std::string name_ = "single shooting";
   double c_ = 0.0;

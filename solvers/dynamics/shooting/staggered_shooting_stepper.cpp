@@ -19,6 +19,7 @@
 #include "../tangent_state.hpp"
 #include "embedded_reference.hpp"
 #include "shooting_newton.hpp"
+#include "inverse_broyden.hpp"
 
 namespace rodlab::solvers::dynamics {
 namespace {
@@ -605,11 +606,12 @@ class StaggeredShootingStepper final : public Stepper {
   // e^kappa > tol / eps (step_bound.hpp). The rod is then cut at nodes first_[1..M-1] into M
   // intervals of exponent about kappa / M; each interval is marched from its own start state
   // (the unknowns: lambda_0 as in single shooting, per interior start node its lambda_pre, eta
-  // and pose, then the actuator unknowns), and the residual is the tip's rows, the 18 jumps
-  // where an interval's march ends on the next one's start, then the actuators' rows. Same
-  // equations, same solution as single shooting (to tol); the Jacobian by intervals (a column
-  // re-marches its interval only), Broyden between as for single shooting but on the Jacobian's
-  // inverse (ShootingNewton::keep_inverse), and a stall on the
+  // and pose, then the actuator unknowns), and the residual is the 18 jumps where an interval's
+  // march ends on the next one's start, the tip's rows, then the actuators' rows (a staircase).
+  // Same equations, same solution as single shooting (to tol); the Jacobian by intervals,
+  // sparse (a column re-marches its interval only), Broyden between as for single shooting but
+  // on the Jacobian's inverse (inverse_broyden.hpp: dense for few unknowns, KLU's factors and
+  // the updates in product form for many), and a stall on the
   // residual's rounding floor accepted (ShootingNewton::accept_rounding_floor). The joins' (and
   // the free tip's) axial force is scaled by E A, not E I / L^2: at small dt the axial rows
   // cannot be resolved to 1e-10 E I / L^2 (5e-15 N on the Table 2.1 rod, an axial strain of
@@ -655,7 +657,7 @@ class StaggeredShootingStepper final : public Stepper {
   /// the step's start moved by exp(u_12..14) and L u_15..17.
   MarchNode interval_start(int i, const Eigen::VectorXd& x) const {
     if (i == 0) return {x.head<6>().cwiseProduct(scale_), Vector6::Zero(), P_.base()};
-    const auto u = x.segment<kJoin>(6 + kJoin * (i - 1));
+    const auto u = x.segment<kJoin>(start_at(i));
     const SE3& ref = interval_ref_[i];
     return {u.head<6>().cwiseProduct(join_scale_), u.segment<6>(6).cwiseProduct(eta_scale_),
             SE3(ref.rotation() * SO3::exp(u.segment<3>(12)),
@@ -685,30 +687,43 @@ class StaggeredShootingStepper final : public Stepper {
     interval_work_[i] = work;
   }
 
-  /// The residual from the intervals' last marches: the tip's rows (tip_residual), then per
-  /// interior start the jump of the march's end on it, scaled as its unknowns (the rotation
-  /// as log(R_start^T R_end)). Sets the step's powers.
+  /// The residual from the intervals' last marches, its rows in staircase order (interval
+  /// i's unknowns reach rows of blocks i - 1 and i alone, so that the LU of the Jacobian in its
+  /// natural order fills only inside that staircase): per interior start i the jump of the
+  /// march's end on it (join_row), scaled as its unknowns (the rotation as log(R_start^T R_end)),
+  /// then the tip's rows (tip_residual), then the actuators'. Sets the step's powers.
   Eigen::VectorXd interval_residual(const Eigen::VectorXd& x) {
     const int M = intervals();
+    Eigen::VectorXd r(x.size());
+    for (int i = 1; i < M; ++i) r.segment<kJoin>(join_row(i)) = jump(i, x);
+    r.segment<6>(tip_row()) = interval_tip(x, r.data() + actuator_at());
+    return r;
+  }
+
+  /// The 18 rows of the jump at interior start i: the end of interval i - 1's last march on
+  /// the start the unknowns x give.
+  Eigen::Matrix<double, kJoin, 1> jump(int i, const Eigen::VectorXd& x) const {
+    const MarchNode& end = interval_end_[i - 1];
+    const MarchNode start = interval_start(i, x);
+    Eigen::Matrix<double, kJoin, 1> rows;
+    rows << (end.lambda_pre - start.lambda_pre).cwiseQuotient(join_scale_),
+        (end.eta - start.eta).cwiseQuotient(eta_scale_),
+        (start.g.rotation().inverse() * end.g.rotation()).log(),
+        (end.g.translation() - start.g.translation()) / P_.length();
+    return rows;
+  }
+
+  /// The tip's rows from the last marches, the actuators' rows into `actuator_rows_out`, and
+  /// the step's powers.
+  Vector6 interval_tip(const Eigen::VectorXd& x, double* actuator_rows_out) {
     double dissipated = 0.0, work = 0.0;
-    for (int i = 0; i < M; ++i) {
+    for (int i = 0; i < intervals(); ++i) {
       dissipated += interval_dissipated_[i];
       work += interval_work_[i];
     }
     dissipated_u_ = dissipated;
-    Eigen::VectorXd r(x.size());
-    r.head<6>() = tip_residual(interval_end_.back(), work, join_scale_);
-    if (m_ > 0) actuator_rows(x.data() + actuator_at(), r.data() + actuator_at());
-    for (int i = 1; i < M; ++i) {
-      const MarchNode& end = interval_end_[i - 1];
-      const MarchNode start = interval_start(i, x);
-      r.segment<kJoin>(6 + kJoin * (i - 1))
-          << (end.lambda_pre - start.lambda_pre).cwiseQuotient(join_scale_),
-          (end.eta - start.eta).cwiseQuotient(eta_scale_),
-          (start.g.rotation().inverse() * end.g.rotation()).log(),
-          (end.g.translation() - start.g.translation()) / P_.length();
-    }
-    return r;
+    if (m_ > 0) actuator_rows(x.data() + actuator_at(), actuator_rows_out);
+    return tip_residual(interval_end_.back(), work, join_scale_);
   }
 
   Eigen::VectorXd shoot_intervals(const Eigen::VectorXd& x) {
@@ -720,37 +735,55 @@ class StaggeredShootingStepper final : public Stepper {
     return interval_residual(x);
   }
 
-  /// Where the actuator unknowns (and their rows) start: after the joins'.
+  /// Interval i's first unknown: lambda_0 (i = 0) or its start's 18.
+  static int start_at(int i) { return i == 0 ? 0 : 6 + kJoin * (i - 1); }
+  static int start_count(int i) { return i == 0 ? 6 : kJoin; }
+  /// The residual's rows: the jump at interior start i, the tip's, the actuators' (which are
+  /// also where the actuator unknowns start).
+  static int join_row(int i) { return kJoin * (i - 1); }
+  int tip_row() const { return kJoin * (intervals() - 1); }
   int actuator_at() const { return 6 + kJoin * (intervals() - 1); }
 
   /// Forward differences by intervals: an unknown of interval i moves its march and the jump at
-  /// its start only (and a clamped tip's pose and the actuators' rows), so its column re-marches
-  /// interval i alone (an actuator unknown's column every interval), the
-  /// others staying at x (Newton may ask at an iterate after a shot elsewhere: x is shot first);
-  /// the profiles of x are restored. The shots counted: segments marched / segments of the rod.
-  void interval_jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& r, Eigen::MatrixXd& J,
-                         int& shots) {
+  /// its start only (and the next jump or the tip, a clamped tip's pose and the actuators'
+  /// rows), so its column re-marches interval i alone and evaluates those rows alone (an
+  /// actuator unknown's column re-marches every interval), the others staying at x (Newton may
+  /// ask at an iterate after a shot elsewhere: x is shot first); the profiles of x are
+  /// restored. The shots counted: segments marched / segments of the rod.
+  void interval_jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& r,
+                         InverseBroyden::Jacobian& J, int& shots) {
+    if (J.rows() != x.size()) J = interval_pattern();
     shoot_intervals(x);
     const bool failed = inner_failed_;
+    const int M = intervals();
     long segments = n_ - 1;
     Eigen::VectorXd xp = x;
-    for (int i = 0; i < intervals(); ++i) {
-      const int lo = i == 0 ? 0 : 6 + kJoin * (i - 1), count = i == 0 ? 6 : kJoin;
-      for (int k = lo; k < lo + count; ++k) {
+    column_.resize(x.size());  // the moved rows of a column (its pattern's rows)
+    auto set_column = [&](int k, double h) {
+      for (InverseBroyden::Jacobian::InnerIterator it(J, k); it; ++it)
+        it.valueRef() = (column_[it.row()] - r[it.row()]) / h;
+    };
+    for (int i = 0; i < M; ++i) {
+      for (int k = start_at(i); k < start_at(i) + start_count(i); ++k) {
         const double h = kShootingFdStep * std::max(1.0, std::abs(x[k]));
         xp[k] = x[k] + h;
         march_interval(i, xp, xi_u_);
-        J.col(k) = (interval_residual(xp) - r) / h;
+        if (i >= 1) column_.segment<kJoin>(join_row(i)) = jump(i, xp);
+        if (i + 1 < M) column_.segment<kJoin>(join_row(i + 1)) = jump(i + 1, xp);
+        if (i + 1 == M || clamped_ || m_ > 0)
+          column_.segment<6>(tip_row()) = interval_tip(xp, column_.data() + actuator_at());
+        set_column(k, h);
         xp[k] = x[k];
       }
       march_interval(i, x, xi_u_);
-      segments += static_cast<long>(count + 1) * (first_[i + 1] - first_[i]);
+      segments += static_cast<long>(start_count(i) + 1) * (first_[i + 1] - first_[i]);
     }
     // an actuator unknown moves every interval's march
     for (int k = actuator_at(); k < actuator_at() + m_; ++k) {
       const double h = kShootingFdStep * std::max(1.0, std::abs(x[k]));
       xp[k] = x[k] + h;
-      J.col(k) = (shoot_intervals(xp) - r) / h;
+      column_ = shoot_intervals(xp);
+      set_column(k, h);
       xp[k] = x[k];
       segments += n_ - 1;
     }
@@ -762,6 +795,31 @@ class StaggeredShootingStepper final : public Stepper {
     }
     inner_failed_ = failed;
     shots += static_cast<int>((segments + n_ - 2) / (n_ - 1));
+  }
+
+  /// The Jacobian's structure: interval i's unknowns reach the jump at its start (i >= 1) and
+  /// the rows its march's end reaches, the next jump or (the last interval) the tip's; a clamped
+  /// tip's rows (its pose chained through every strain) and the actuators' rows are in every
+  /// column, and an actuator unknown's column is dense.
+  InverseBroyden::Jacobian interval_pattern() const {
+    const int M = intervals(), n = actuator_at() + m_;
+    std::vector<Eigen::Triplet<double>> entries;
+    auto rows = [&entries](int first, int count, int column) {
+      for (int row = first; row < first + count; ++row) entries.emplace_back(row, column, 1.0);
+    };
+    for (int i = 0; i < M; ++i) {
+      for (int k = start_at(i); k < start_at(i) + start_count(i); ++k) {
+        if (i >= 1) rows(join_row(i), kJoin, k);
+        if (i + 1 < M) rows(join_row(i + 1), kJoin, k);
+        if (i + 1 == M || clamped_) rows(tip_row(), 6, k);
+        rows(actuator_at(), m_, k);
+      }
+    }
+    for (int k = actuator_at(); k < n; ++k) rows(0, n, k);
+    InverseBroyden::Jacobian J(n, n);
+    J.setFromTriplets(entries.begin(), entries.end());
+    J.makeCompressed();
+    return J;
   }
 
   /// The first unknowns of multiple shooting, from the state at the step's start: each start
@@ -778,8 +836,8 @@ class StaggeredShootingStepper final : public Stepper {
       if (i == 0) {
         x.head<6>() = lambda.cwiseQuotient(scale_);
       } else {
-        x.segment<6>(6 + kJoin * (i - 1)) = lambda.cwiseQuotient(join_scale_);
-        x.segment<6>(12 + kJoin * (i - 1)) = eta_[b].cwiseQuotient(eta_scale_);
+        x.segment<6>(start_at(i)) = lambda.cwiseQuotient(join_scale_);
+        x.segment<6>(start_at(i) + 6) = eta_[b].cwiseQuotient(eta_scale_);
       }
     }
     // a muscle: its length now; a length-controlled force: the last one
@@ -798,12 +856,11 @@ class StaggeredShootingStepper final : public Stepper {
     if (multiple_steps_ == 0) {
       multiple_.start(interval_guess());
       multiple_.accept_rounding_floor(true);
-      multiple_.keep_inverse(true);
     }
     multiple_.name(rodlab::format("multiple shooting ({} intervals)", intervals()));
     ShootingOutcome out = multiple_.solve(
         [this](const Eigen::VectorXd& x) { return shoot_intervals(x); },
-        [this](const Eigen::VectorXd& x, const Eigen::VectorXd& r, Eigen::MatrixXd& J,
+        [this](const Eigen::VectorXd& x, const Eigen::VectorXd& r, InverseBroyden::Jacobian& J,
                int& shots) { interval_jacobian(x, r, J, shots); },
         c_, multiple_steps_ >= 2, opt_.tol, opt_.max_iterations);
     ++multiple_steps_;
@@ -855,8 +912,10 @@ class StaggeredShootingStepper final : public Stepper {
   /// (far from the solution, in early Newton iterates of the shooting), Newton with a
   /// finite-difference Jacobian of Phi takes over. A failure leaves inner_failed_ set. Out of
   /// line: inlined into march_segment, GCC put SE3's product out of line and the step lost 5 %.
-  [[gnu::noinline]] Vector6 segment_twist(int j, const Vector6& lambda_pre, const Vector6& X0,
-                                          Vector6& lambda) {
+  /// Flattened (everything it calls inlined): when multiple shooting's sparse Newton joined this
+  /// file, GCC stopped inlining Eigen's ds_ * Vector6 into it, and the step lost 25 %.
+  [[gnu::noinline, gnu::flatten]] Vector6 segment_twist(int j, const Vector6& lambda_pre,
+                                                        const Vector6& X0, Vector6& lambda) {
     const double s_mid = (j + 0.5) * ds_;
     auto phi = [&](const Vector6& X, Vector6& lam) {
       lam = entry_at_[j] ? Vector6(lambda_pre - entry_loads(j, X / ds_)) : lambda_pre;
@@ -964,7 +1023,8 @@ class StaggeredShootingStepper final : public Stepper {
   std::vector<MarchNode> interval_end_;
   std::vector<double> interval_dissipated_, interval_work_;
   Vector6 eta_scale_ = Vector6::Ones(), join_scale_ = Vector6::Ones();
-  ShootingNewton<Eigen::VectorXd, Eigen::MatrixXd> multiple_;
+  Eigen::VectorXd column_;  ///< interval_jacobian's scratch
+  ShootingNewton<Eigen::VectorXd, InverseBroyden::Jacobian, InverseBroyden> multiple_;
   long multiple_steps_ = 0;
   int refined_intervals_ = 1;  ///< at least this many intervals after a stalled step
   double intervals_dt_ = 0.0;  ///< interval_count_for's last dt and its intervals
