@@ -93,7 +93,7 @@ BOOST_AUTO_TEST_CASE(just_within_the_bound_runs) {
 
 BOOST_AUTO_TEST_CASE(multiple_shooting_intervals) {
   // ceil(kappa / (bound - 4)) beyond the bound (12.2 at tol = 1e-10: 8.2 per interval), at most
-  // one per segment and kMaxIntervals; 1 within the bound
+  // one per segment; 1 within the bound
   using solvers::dynamics::shooting_intervals;
   const auto staggered = ShootingGrid::staggered;
   BOOST_TEST(shooting_intervals(12.0, staggered, 1e-10, 19) == 1);
@@ -101,8 +101,11 @@ BOOST_AUTO_TEST_CASE(multiple_shooting_intervals) {
   BOOST_TEST(shooting_intervals(25.1, staggered, 1e-10, 19) == 4);  // dt = 0.1 ms: 3 stalled
   BOOST_TEST(shooting_intervals(110.0, staggered, 1e-10, 19) == 14);
   BOOST_TEST(shooting_intervals(241.0, staggered, 1e-10, 19) == 19);
+  BOOST_TEST(shooting_intervals(1100.0, staggered, 1e-10, 99) == 99);
+  const double per_interval =
+      solvers::dynamics::single_shooting_exponent_bound(staggered, 1e-10) - 4.0;
   BOOST_TEST(shooting_intervals(1100.0, staggered, 1e-10, 999) ==
-             solvers::dynamics::kMaxIntervals);
+             static_cast<int>(std::ceil(1100.0 / per_interval)));  // 134: no cap but the segments
   // tol 1e-14 leaves 3.0 - 4 < 1 per interval: one per unit of kappa
   BOOST_TEST(shooting_intervals(3.5, staggered, 1e-14, 19) == 4);
 }

@@ -159,9 +159,8 @@ class StaggeredShootingStepper final : public Stepper {
                         "shooting; docs/dynamics.md \"Multiple shooting below the bound\")");
     ShootingOutcome out = intervals() > 1 ? solve_intervals(dt) : solve_shots(steps_ >= 2);
     // A multiple-shooting step that stalls is retried with twice the intervals (for the rest of
-    // the run), up to one per segment or kMaxIntervals: shorter intervals amplify the rounding
-    // less.
-    const int most = std::min(n_ - 1, kMaxIntervals);
+    // the run), up to one per segment: shorter intervals amplify the rounding less.
+    const int most = n_ - 1;
     while (!out.failure.empty() && intervals() > 1 && intervals() < most) {
       const int spent = out.shots;
       refined_intervals_ = std::min(2 * intervals(), most);
@@ -625,7 +624,7 @@ class StaggeredShootingStepper final : public Stepper {
   /// pays no pow).
   int interval_count_for(double dt) {
     if (opt_.grid == ShootingGrid::euler) return 1;
-    if (opt_.intervals > 0) return std::min({opt_.intervals, n_ - 1, kMaxIntervals});
+    if (opt_.intervals > 0) return std::min(opt_.intervals, n_ - 1);
     if (dt != intervals_dt_) {
       intervals_dt_ = dt;
       intervals_at_dt_ =

@@ -64,8 +64,7 @@ int shooting_intervals(double kappa, ShootingGrid grid, double tol, int segments
   if (!(kappa > bound)) return 1;
   const double per_interval = std::max(bound - kIntervalMargin, kMinIntervalExponent);
   const double wanted = std::ceil(kappa / per_interval);
-  const double most = std::min(segments, kMaxIntervals);
-  return std::max(2, static_cast<int>(std::min(wanted, most)));
+  return std::max(2, static_cast<int>(std::min(wanted, static_cast<double>(segments))));
 }
 
 std::string shooting_step_problem(const DynamicProblem& problem, std::string_view scheme,

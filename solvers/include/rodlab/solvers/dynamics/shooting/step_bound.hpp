@@ -49,8 +49,8 @@ std::string single_shooting_step_problem(const DynamicProblem& problem, std::str
 /// shooting below the bound"): beyond the bound the rod is cut into intervals whose exponents
 /// stay kIntervalMargin below it, ceil(kappa / (bound - margin)) of them (at least one per
 /// kMinIntervalExponent of kappa where the tolerance leaves almost no room; at most one per
-/// segment and kMaxIntervals: Newton's dense matrices have 6 + 18 (M - 1) rows, 564 at 32
-/// intervals, where inverting a fresh Jacobian takes 33-36 ms); 1 within the bound
+/// segment: Newton's model is sparse beyond 96 unknowns, inverse_broyden.hpp; until session 33
+/// a dense inverse capped them at 32); 1 within the bound
 /// (single shooting, unchanged). kappa overstates the march's amplification where k ds > 1
 /// (a segment amplifies by about 1 + k ds, not e^(k ds)): the viscous cantilever at N = 20 runs
 /// at dt = 1.1e-6 s with 19 intervals, kappa / 19 = 12.7. The margin: the joins' residuals
@@ -59,7 +59,6 @@ std::string single_shooting_step_problem(const DynamicProblem& problem, std::str
 /// on, four (6.3) ran.
 inline constexpr double kIntervalMargin = 4.0;
 inline constexpr double kMinIntervalExponent = 1.0;
-inline constexpr int kMaxIntervals = 32;
 int shooting_intervals(double kappa, ShootingGrid grid, double tol, int segments);
 
 /// Empty when the stepper runs at dt: by single shooting within the bound, by multiple shooting
