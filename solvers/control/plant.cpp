@@ -66,7 +66,7 @@ Plant::Plant(const scene::Scene& scene, const PlantOptions& options)
   substeps_ = substeps_of(*problem_, options);
   dt_ = dt_control_ / substeps_;
   if (scheme.id == SchemeId::implicit_midpoint || scheme.id == SchemeId::bdf_alpha) {
-    const std::string why = dynamics::single_shooting_step_problem(
+    const std::string why = dynamics::shooting_step_problem(
         *problem_, options.solver.scheme, options.solver.grid, dt_, options.solver.tol);
     if (!why.empty()) throw std::invalid_argument(why);
   }

@@ -15,6 +15,8 @@
 
 #include "control_support.hpp"
 #include "rodlab/solvers/control/linearisation.hpp"
+#include "rodlab/solvers/dynamics/dynamic_problem.hpp"
+#include "rodlab/solvers/dynamics/shooting/step_bound.hpp"
 
 namespace c = rodlab::solvers::control;
 using rodlab::testing::control::cable_robot;
@@ -109,6 +111,76 @@ BOOST_AUTO_TEST_CASE(implicit_function_jacobians_match_finite_differences) {
       BOOST_TEST(rel(D, D_fd) < 2e-6);
     }
   }
+}
+
+// Under multiple shooting (the staggered march cut into intervals, here forced inside the bound
+// so that single shooting solves the same step) the linearised step restarts its tangent chain
+// at each interval and closes the joins by the implicit function theorem. Reference: whole-step
+// central differences (as above) and single shooting's own linearisation of the same step.
+// Measured (2 and 5 intervals): A within 1.1e-9..2.0e-9 of the differences, B 4.0e-8; within
+// 3.0e-8 (A) and 1.6e-8 (B) of single shooting's.
+BOOST_AUTO_TEST_CASE(multiple_shooting_linearisation_matches) {
+  for (const int intervals : {2, 5}) {
+    BOOST_TEST_CONTEXT(intervals << " intervals") {
+      rodlab::scene::Scene scene = cable_robot("cosserat");
+      scene.loads.gravity = Eigen::Vector3d(-9.81, 0.0, 0.0);
+      auto o = plant_options("implicit-midpoint", 6, 0.01);
+      c::Plant single(scene, o);
+      o.solver.shooting_intervals = intervals;
+      c::Plant multiple(scene, o);
+      BOOST_REQUIRE(multiple.has_step_linearisation());
+      drive(single);
+      drive(multiple);
+      Eigen::MatrixXd A, B, C, D, A1, B1, C1, D1, A_fd, B_fd, C_fd, D_fd;
+      c::Linearisation exact(multiple), exact_single(single);
+      c::LinearisationOptions fd;
+      fd.method = c::JacobianMethod::finite_difference;
+      c::Linearisation differenced(multiple, fd);
+      BOOST_REQUIRE(exact.jacobians(multiple, A, B, C, D).ok);
+      BOOST_REQUIRE(exact_single.jacobians(single, A1, B1, C1, D1).ok);
+      BOOST_REQUIRE(differenced.jacobians(multiple, A_fd, B_fd, C_fd, D_fd).ok);
+      const auto rel = [](const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+        return (X - Y).norm() / Y.norm();
+      };
+      BOOST_TEST_MESSAGE("against differences: A " << rel(A, A_fd) << " B " << rel(B, B_fd)
+                         << "; against single shooting: A " << rel(A, A1) << " B "
+                         << rel(B, B1));
+      BOOST_TEST(rel(A, A_fd) < 2e-6);
+      BOOST_TEST(rel(B, B_fd) < 2e-6);
+      BOOST_TEST(rel(A, A1) < 1e-6);
+      BOOST_TEST(rel(B, B1) < 1e-6);
+    }
+  }
+}
+
+// Below single shooting's lower step bound, where the plant refused implicit-midpoint until
+// session 33, the steps are multiple shooting's and so is their linearisation. Reference:
+// whole-step central differences. Measured at dt = 0.1 ms: A within 1.0e-8, B 1.2e-8.
+BOOST_AUTO_TEST_CASE(linearisation_below_the_step_bound) {
+  rodlab::scene::Scene scene = cable_robot("cosserat");
+  scene.loads.gravity = Eigen::Vector3d(-9.81, 0.0, 0.0);
+  const double dt = 1e-4;
+  const auto P = rodlab::solvers::dynamics::DynamicProblem::from_scene(scene);
+  BOOST_TEST_REQUIRE(rodlab::solvers::dynamics::shooting_intervals(
+                         rodlab::solvers::dynamics::single_shooting_exponent(P, dt),
+                         rodlab::solvers::dynamics::ShootingGrid::staggered, 1e-10, 5) > 1);
+  c::Plant plant(scene, plant_options("implicit-midpoint", 6, dt));
+  BOOST_REQUIRE(plant.has_step_linearisation());
+  drive(plant);
+  Eigen::MatrixXd A, B, C, D, A_fd, B_fd, C_fd, D_fd;
+  c::Linearisation exact(plant);
+  c::LinearisationOptions fd;
+  fd.method = c::JacobianMethod::finite_difference;
+  c::Linearisation differenced(plant, fd);
+  BOOST_REQUIRE(exact.jacobians(plant, A, B, C, D).ok);
+  BOOST_REQUIRE(differenced.jacobians(plant, A_fd, B_fd, C_fd, D_fd).ok);
+  const auto rel = [](const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+    return (X - Y).norm() / Y.norm();
+  };
+  BOOST_TEST_MESSAGE("below the bound, against differences: A " << rel(A, A_fd) << " B "
+                                                                << rel(B, B_fd));
+  BOOST_TEST(rel(A, A_fd) < 2e-6);
+  BOOST_TEST(rel(B, B_fd) < 2e-6);
 }
 
 // The linear model's remainder x+(x + e v, u + e w) - x+(x, u) - e (A v + B w) is O(e^2): halving

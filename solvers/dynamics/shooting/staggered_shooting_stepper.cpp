@@ -154,9 +154,6 @@ class StaggeredShootingStepper final : public Stepper {
     t_end_ = t + dt;
     prepare_references();
     set_intervals(std::max(interval_count_for(dt), refined_intervals_));
-    if (A != nullptr && intervals() > 1)
-      throw unsupported("step_linearised beyond single shooting's lower step bound (multiple "
-                        "shooting; docs/dynamics.md \"Multiple shooting below the bound\")");
     ShootingOutcome out = intervals() > 1 ? solve_intervals(dt) : solve_shots(steps_ >= 2);
     // A multiple-shooting step that stalls is retried with twice the intervals (for the rest of
     // the run), up to one per segment: shorter intervals amplify the rounding less.
@@ -483,6 +480,11 @@ class StaggeredShootingStepper final : public Stepper {
   // from the solution, instead of a shooting solve per column. x enters through the histories
   // only, h = slope x (TimeRule::history_slope). Accurate to about 1e-9 relative (the local
   // steps below; tests/control/test_linearisation.cpp compares with whole-step differences).
+  // Under multiple shooting the chain restarts at each interior interval start i from its own
+  // unknowns z_i (its start's lambda_pre, eta and rho, scaled as the joins), the residual gains
+  // the 15 jumps per join (the end's chained state minus z_i; positions enter no balance), and
+  // the implicit function theorem solves for lambda_0 and every z_i at once: each chain stays
+  // within an interval, whose amplification the bound keeps small.
 
   static constexpr int kNodeDim = 15;  ///< lambda_pre, eta, rho
   using NodeVector = Eigen::Matrix<double, kNodeDim, 1>;
@@ -522,9 +524,11 @@ class StaggeredShootingStepper final : public Stepper {
 
   void linearise(double dt, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
     const int ns = n_ - 1, nf = static_cast<int>(P_.actuators().size());
-    // columns of the partials: lambda_0 (scaled), x's strains and velocities (six per segment
-    // and per node 1..N-1), the forces
-    const int col_xi = 6, col_eta = 6 + 6 * ns, col_F = 6 + 12 * ns, n_in = col_F + nf;
+    // columns of the partials: the unknowns, lambda_0 (scaled) and under multiple shooting each
+    // interior start's z_i (scaled), then x's strains and velocities (six per segment and per
+    // node 1..N-1), the forces
+    const int M = intervals(), n_x = 6 + kNodeDim * (M - 1);
+    const int col_xi = n_x, col_eta = n_x + 6 * ns, col_F = n_x + 12 * ns, n_in = col_F + nf;
     const double slope = rule_->history_slope(dt), L = P_.length();
     // local steps: lambda relative to its scale (E I / L: a radian of bend), rho 1e-5 rad,
     // velocities 1e-4 rad/s and 1e-4 L/s, strains 1e-5 / L and 1e-7, forces 1e-5 E I / L^2
@@ -538,9 +542,21 @@ class StaggeredShootingStepper final : public Stepper {
     lin_S_.setZero(kNodeDim, n_in);
     lin_S_.topLeftCorner<6, 6>() = scale_.asDiagonal();
     lin_D_.setZero(12 * ns, n_in);
+    lin_J_.setZero(n_x - 6, n_in);  // the joins' rows
+    NodeVector z_scale;             // z_i's units: the joins' scales
+    z_scale << join_scale_, eta_scale_, Vector3::Ones();
     Eigen::Matrix<double, kNodeDim + 6, kNodeDim> Lz;
     lin_P_.resize(kNodeDim + 6, 12 + nf);
-    for (int j = 0; j < ns; ++j) {
+    for (int j = 0, i = 1; j < ns; ++j) {
+      if (i < M && j == first_[i]) {  // interval i starts: its jump, then its own chain
+        const int z = 6 + kNodeDim * (i - 1);
+        lin_J_.middleRows(kNodeDim * (i - 1), kNodeDim) =
+            lin_S_.array().colwise() / z_scale.array();
+        lin_J_.block(kNodeDim * (i - 1), z, kNodeDim, kNodeDim).diagonal().array() -= 1.0;
+        lin_S_.setZero();
+        lin_S_.block(0, z, kNodeDim, kNodeDim) = z_scale.asDiagonal();
+        ++i;
+      }
       for (int i = 0; i < kNodeDim; ++i) {
         NodeVector z = NodeVector::Zero();
         z[i] = h_node[i];
@@ -571,11 +587,20 @@ class StaggeredShootingStepper final : public Stepper {
       W_rho.col(i) =
           (P_.tip_load(R_tip * SO3::exp(d), t_u_) - P_.tip_load(R_tip * SO3::exp(-d), t_u_)) / 2e-5;
     }
-    lin_R_ = (lin_S_.topRows(6) - W_rho * lin_S_.bottomRows(3)).array().colwise() / scale_.array();
-    const Eigen::PartialPivLU<Matrix6> r_lambda(Matrix6(lin_R_.leftCols(6)));
-    lin_L_ = -r_lambda.solve(lin_R_.rightCols(n_in - 6));
-    lin_Y_ = lin_D_.rightCols(n_in - 6);
-    lin_Y_.noalias() += lin_D_.leftCols(6) * lin_L_;
+    // (multiple shooting: the tip's rows scaled as its residual's, E A for the axial force)
+    const Vector6& tip_scale = M > 1 ? join_scale_ : scale_;
+    lin_R_ = (lin_S_.topRows(6) - W_rho * lin_S_.bottomRows(3)).array().colwise() /
+             tip_scale.array();
+    if (M == 1) {
+      const Eigen::PartialPivLU<Matrix6> r_lambda(Matrix6(lin_R_.leftCols(6)));
+      lin_L_ = -r_lambda.solve(lin_R_.rightCols(n_in - 6));
+    } else {
+      lin_J_.conservativeResize(n_x, Eigen::NoChange);
+      lin_J_.bottomRows(6) = lin_R_;
+      lin_L_ = -lin_J_.leftCols(n_x).partialPivLu().solve(lin_J_.rightCols(n_in - n_x));
+    }
+    lin_Y_ = lin_D_.rightCols(n_in - n_x);
+    lin_Y_.noalias() += lin_D_.leftCols(n_x) * lin_L_;
     // x+ = a u + (1 - a) x in the tangent coordinates
     const double a = end_;
     const int n = tangent_.size();
@@ -1004,7 +1029,7 @@ class StaggeredShootingStepper final : public Stepper {
   double dissipated_start_ = 0.0, work_start_ = 0.0, dissipated_u_ = 0.0, work_u_ = 0.0;
   std::vector<Vector6> xi_, eta_, xi_u_, eta_u_, xi_hist_, eta_hist_, xi_ref_;
   std::vector<MarchNode> march_;  ///< the last shot's march at the nodes
-  Eigen::MatrixXd lin_S_, lin_D_, lin_Y_, lin_P_, lin_R_, lin_L_;  ///< linearise()'s workspace
+  Eigen::MatrixXd lin_S_, lin_D_, lin_Y_, lin_P_, lin_R_, lin_L_, lin_J_;  ///< linearise()'s
   std::vector<SE3> g_;
   std::vector<DynamicProblem::EntryNode> entries_;
   std::vector<char> entry_at_;
