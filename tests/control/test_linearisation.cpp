@@ -43,6 +43,24 @@ Eigen::VectorXd state(const c::Plant& p) {
   return x;
 }
 
+/// A plant's Jacobians of one control step: the scheme's own linearisation (the default
+/// method), or whole-step central differences.
+struct Jacobians {
+  Eigen::MatrixXd A, B, C, D;
+};
+Jacobians jacobians(c::Plant& plant, bool differenced) {
+  c::LinearisationOptions o;
+  if (differenced) o.method = c::JacobianMethod::finite_difference;
+  c::Linearisation lin(plant, o);
+  Jacobians J;
+  BOOST_REQUIRE(lin.jacobians(plant, J.A, J.B, J.C, J.D).ok);
+  return J;
+}
+
+double rel(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+  return (X - Y).norm() / Y.norm();
+}
+
 }  // namespace
 
 // One directional derivative against the same combination of A's and B's columns: both are
@@ -91,24 +109,17 @@ BOOST_AUTO_TEST_CASE(implicit_function_jacobians_match_finite_differences) {
       c::Plant plant(scene, plant_options(scheme, 6, 0.01));
       BOOST_REQUIRE(plant.has_step_linearisation());
       drive(plant);
-      Eigen::MatrixXd A, B, C, D, A_fd, B_fd, C_fd, D_fd;
-      c::Linearisation exact(plant);
-      c::LinearisationOptions o;
-      o.method = c::JacobianMethod::finite_difference;
-      c::Linearisation differenced(plant, o);
       const Eigen::VectorXd x0 = state(plant);
-      BOOST_REQUIRE(exact.jacobians(plant, A, B, C, D).ok);
+      const Jacobians exact = jacobians(plant, false);
       BOOST_TEST((state(plant) - x0).norm() == 0.0);  // restored
-      BOOST_REQUIRE(differenced.jacobians(plant, A_fd, B_fd, C_fd, D_fd).ok);
-      const auto rel = [](const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
-        return (X - Y).norm() / Y.norm();
-      };
-      BOOST_TEST_MESSAGE("relative differences A " << rel(A, A_fd) << " B " << rel(B, B_fd)
-                                                   << " C " << rel(C, C_fd) << " D " << rel(D, D_fd));
-      BOOST_TEST(rel(A, A_fd) < 2e-6);
-      BOOST_TEST(rel(B, B_fd) < 2e-6);
-      BOOST_TEST(rel(C, C_fd) < 2e-6);
-      BOOST_TEST(rel(D, D_fd) < 2e-6);
+      const Jacobians fd = jacobians(plant, true);
+      BOOST_TEST_MESSAGE("relative differences A " << rel(exact.A, fd.A) << " B "
+                         << rel(exact.B, fd.B) << " C " << rel(exact.C, fd.C) << " D "
+                         << rel(exact.D, fd.D));
+      BOOST_TEST(rel(exact.A, fd.A) < 2e-6);
+      BOOST_TEST(rel(exact.B, fd.B) < 2e-6);
+      BOOST_TEST(rel(exact.C, fd.C) < 2e-6);
+      BOOST_TEST(rel(exact.D, fd.D) < 2e-6);
     }
   }
 }
@@ -131,24 +142,15 @@ BOOST_AUTO_TEST_CASE(multiple_shooting_linearisation_matches) {
       BOOST_REQUIRE(multiple.has_step_linearisation());
       drive(single);
       drive(multiple);
-      Eigen::MatrixXd A, B, C, D, A1, B1, C1, D1, A_fd, B_fd, C_fd, D_fd;
-      c::Linearisation exact(multiple), exact_single(single);
-      c::LinearisationOptions fd;
-      fd.method = c::JacobianMethod::finite_difference;
-      c::Linearisation differenced(multiple, fd);
-      BOOST_REQUIRE(exact.jacobians(multiple, A, B, C, D).ok);
-      BOOST_REQUIRE(exact_single.jacobians(single, A1, B1, C1, D1).ok);
-      BOOST_REQUIRE(differenced.jacobians(multiple, A_fd, B_fd, C_fd, D_fd).ok);
-      const auto rel = [](const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
-        return (X - Y).norm() / Y.norm();
-      };
-      BOOST_TEST_MESSAGE("against differences: A " << rel(A, A_fd) << " B " << rel(B, B_fd)
-                         << "; against single shooting: A " << rel(A, A1) << " B "
-                         << rel(B, B1));
-      BOOST_TEST(rel(A, A_fd) < 2e-6);
-      BOOST_TEST(rel(B, B_fd) < 2e-6);
-      BOOST_TEST(rel(A, A1) < 1e-6);
-      BOOST_TEST(rel(B, B1) < 1e-6);
+      const Jacobians exact = jacobians(multiple, false), fd = jacobians(multiple, true);
+      const Jacobians one = jacobians(single, false);
+      BOOST_TEST_MESSAGE("against differences: A " << rel(exact.A, fd.A) << " B "
+                         << rel(exact.B, fd.B) << "; against single shooting: A "
+                         << rel(exact.A, one.A) << " B " << rel(exact.B, one.B));
+      BOOST_TEST(rel(exact.A, fd.A) < 2e-6);
+      BOOST_TEST(rel(exact.B, fd.B) < 2e-6);
+      BOOST_TEST(rel(exact.A, one.A) < 1e-6);
+      BOOST_TEST(rel(exact.B, one.B) < 1e-6);
     }
   }
 }
@@ -167,20 +169,11 @@ BOOST_AUTO_TEST_CASE(linearisation_below_the_step_bound) {
   c::Plant plant(scene, plant_options("implicit-midpoint", 6, dt));
   BOOST_REQUIRE(plant.has_step_linearisation());
   drive(plant);
-  Eigen::MatrixXd A, B, C, D, A_fd, B_fd, C_fd, D_fd;
-  c::Linearisation exact(plant);
-  c::LinearisationOptions fd;
-  fd.method = c::JacobianMethod::finite_difference;
-  c::Linearisation differenced(plant, fd);
-  BOOST_REQUIRE(exact.jacobians(plant, A, B, C, D).ok);
-  BOOST_REQUIRE(differenced.jacobians(plant, A_fd, B_fd, C_fd, D_fd).ok);
-  const auto rel = [](const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
-    return (X - Y).norm() / Y.norm();
-  };
-  BOOST_TEST_MESSAGE("below the bound, against differences: A " << rel(A, A_fd) << " B "
-                                                                << rel(B, B_fd));
-  BOOST_TEST(rel(A, A_fd) < 2e-6);
-  BOOST_TEST(rel(B, B_fd) < 2e-6);
+  const Jacobians exact = jacobians(plant, false), fd = jacobians(plant, true);
+  BOOST_TEST_MESSAGE("below the bound, against differences: A " << rel(exact.A, fd.A) << " B "
+                                                                << rel(exact.B, fd.B));
+  BOOST_TEST(rel(exact.A, fd.A) < 2e-6);
+  BOOST_TEST(rel(exact.B, fd.B) < 2e-6);
 }
 
 // The linear model's remainder x+(x + e v, u + e w) - x+(x, u) - e (A v + B w) is O(e^2): halving
