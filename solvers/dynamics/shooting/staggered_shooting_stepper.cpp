@@ -547,15 +547,14 @@ class StaggeredShootingStepper final : public Stepper {
     z_scale << join_scale_, eta_scale_, Vector3::Ones();
     Eigen::Matrix<double, kNodeDim + 6, kNodeDim> Lz;
     lin_P_.resize(kNodeDim + 6, 12 + nf);
-    for (int j = 0, i = 1; j < ns; ++j) {
-      if (i < M && j == first_[i]) {  // interval i starts: its jump, then its own chain
-        const int z = 6 + kNodeDim * (i - 1);
-        lin_J_.middleRows(kNodeDim * (i - 1), kNodeDim) =
-            lin_S_.array().colwise() / z_scale.array();
-        lin_J_.block(kNodeDim * (i - 1), z, kNodeDim, kNodeDim).diagonal().array() -= 1.0;
+    for (int j = 0, next = 1; j < ns; ++j) {
+      if (next < M && j == first_[next]) {  // interval `next` starts: its jump, its own chain
+        const int row = kNodeDim * (next - 1), z = 6 + row;
+        lin_J_.middleRows(row, kNodeDim) = lin_S_.array().colwise() / z_scale.array();
+        lin_J_.block(row, z, kNodeDim, kNodeDim).diagonal().array() -= 1.0;
         lin_S_.setZero();
         lin_S_.block(0, z, kNodeDim, kNodeDim) = z_scale.asDiagonal();
-        ++i;
+        ++next;
       }
       for (int i = 0; i < kNodeDim; ++i) {
         NodeVector z = NodeVector::Zero();
