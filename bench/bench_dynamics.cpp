@@ -236,11 +236,11 @@ const bool registered = [] {
                                        "implicit-midpoint-collocation", ShootingGrid::euler},
                               FineStep{"implicit-midpoint/grid=staggered", "implicit-midpoint",
                                        ShootingGrid::staggered}})
-    for (const char* dt_name : {"1ms", "0.1ms", "0.01ms"}) {
-      const double dt = 1e-3 * std::stod(dt_name);
+    for (const auto& [dt_name, dt] : {std::pair{"1ms", 1e-3}, std::pair{"0.1ms", 1e-4},
+                                      std::pair{"0.01ms", 1e-5}}) {
       auto* f = benchmark::RegisterBenchmark(
           (std::string("step/") + fine.name + "/dt=" + dt_name).c_str(),
-          [fine, dt](benchmark::State& state) {
+          [fine, dt = dt](benchmark::State& state) {
             step_benchmark(state, fine.scheme, dt, fine.grid, VariationalStep::verlet, 300.0,
                            true);
           });

@@ -131,12 +131,12 @@ class ShootingNewton {
     Vec x = extrapolate ? Vec(2.0 * prev_ - prev2_) : prev_;
     Vec r = shoot(x);
     ++out.shots;
-    if (!valid_ || c != c_) {
-      if (!fresh_jacobian(jacobian, x, r, c, out.shots)) {
-        out.failure = "the Jacobian is not finite";
-        return out;
-      }
-    }
+    auto rebuild = [&] {  // a fresh Jacobian at x
+      if (fresh_jacobian(jacobian, x, r, c, out.shots)) return true;
+      out.failure = "the Jacobian is not finite";
+      return false;
+    };
+    if ((!valid_ || c != c_) && !rebuild()) return out;
     bool fresh = false;
     int slow_steps = 0;  // slow Broyden steps kept in a row (far from the solution)
     int iterations = 0;  // Newton steps taken
@@ -149,10 +149,7 @@ class ShootingNewton {
         return out;
       }
       if (!valid_) {  // the model keeps no more updates: a fresh Jacobian here
-        if (!fresh_jacobian(jacobian, x, r, c, out.shots)) {
-          out.failure = "the Jacobian is not finite";
-          return out;
-        }
+        if (!rebuild()) return out;
         fresh = true;
       }
       const Vec dx = model_.step(r);
@@ -168,10 +165,7 @@ class ShootingNewton {
       slow_steps = slow && keep_slow ? slow_steps + 1 : 0;
       if (slow && !keep_slow && !fresh) {
         // Broyden's secant model went stale: rebuild the Jacobian where we stand.
-        if (!fresh_jacobian(jacobian, x, r, c, out.shots)) {
-          out.failure = "the Jacobian is not finite";
-          return out;
-        }
+        if (!rebuild()) return out;
         fresh = true;
         continue;
       }

@@ -542,7 +542,7 @@ class StaggeredShootingStepper final : public Stepper {
     lin_S_.setZero(kNodeDim, n_in);
     lin_S_.topLeftCorner<6, 6>() = scale_.asDiagonal();
     lin_D_.setZero(12 * ns, n_in);
-    lin_J_.setZero(n_x - 6, n_in);  // the joins' rows
+    lin_J_.setZero(n_x, n_in);  // the joins' rows, then the tip's (multiple shooting)
     NodeVector z_scale;             // z_i's units: the joins' scales
     z_scale << join_scale_, eta_scale_, Vector3::Ones();
     Eigen::Matrix<double, kNodeDim + 6, kNodeDim> Lz;
@@ -594,7 +594,6 @@ class StaggeredShootingStepper final : public Stepper {
       const Eigen::PartialPivLU<Matrix6> r_lambda(Matrix6(lin_R_.leftCols(6)));
       lin_L_ = -r_lambda.solve(lin_R_.rightCols(n_in - 6));
     } else {
-      lin_J_.conservativeResize(n_x, Eigen::NoChange);
       lin_J_.bottomRows(6) = lin_R_;
       lin_L_ = -lin_J_.leftCols(n_x).partialPivLu().solve(lin_J_.rightCols(n_in - n_x));
     }
@@ -765,6 +764,9 @@ class StaggeredShootingStepper final : public Stepper {
   /// also where the actuator unknowns start).
   static int join_row(int i) { return kJoin * (i - 1); }
   int tip_row() const { return kJoin * (intervals() - 1); }
+  /// Interval i's unknowns move the tip's rows: the last interval's, and a clamped tip's (its
+  /// pose chains every interval's strains).
+  bool reaches_tip(int i) const { return i + 1 == intervals() || clamped_; }
   int actuator_at() const { return 6 + kJoin * (intervals() - 1); }
 
   /// Forward differences by intervals: an unknown of interval i moves its march and the jump at
@@ -793,7 +795,7 @@ class StaggeredShootingStepper final : public Stepper {
         march_interval(i, xp, xi_u_);
         if (i >= 1) column_.segment<kJoin>(join_row(i)) = jump(i, xp);
         if (i + 1 < M) column_.segment<kJoin>(join_row(i + 1)) = jump(i + 1, xp);
-        if (i + 1 == M || clamped_ || m_ > 0)
+        if (reaches_tip(i) || m_ > 0)  // interval_tip sets the actuators' rows too
           column_.segment<6>(tip_row()) = interval_tip(xp, column_.data() + actuator_at());
         set_column(k, h);
         xp[k] = x[k];
@@ -834,7 +836,7 @@ class StaggeredShootingStepper final : public Stepper {
       for (int k = start_at(i); k < start_at(i) + start_count(i); ++k) {
         if (i >= 1) rows(join_row(i), kJoin, k);
         if (i + 1 < M) rows(join_row(i + 1), kJoin, k);
-        if (i + 1 == M || clamped_) rows(tip_row(), 6, k);
+        if (reaches_tip(i)) rows(tip_row(), 6, k);
         rows(actuator_at(), m_, k);
       }
     }
