@@ -44,6 +44,21 @@ bool fd_jacobian(Evaluator& eval, const VectorXd& x, VectorXd Fx, double step, M
   return true;
 }
 
+/// The Newton step -J^-1 F by column-pivoted Householder QR (rank-revealing: a singular J gives
+/// a non-finite or huge step, which the caller reports). Six unknowns, the single-shooting
+/// statics' base wrench, take a fixed-size QR: the same algorithm inlined here, where the
+/// dynamic one runs Eigen's out-of-line Householder and GEMV kernels, whose code a fresh
+/// process faults in and fetches cold (about 40 us of a 200 us rkmk-euler-explicit solve at
+/// N = 100; docs/statics.md "Cold and warm solves").
+VectorXd newton_step(const MatrixXd& J, const VectorXd& F) {
+  if (J.rows() == 6 && J.cols() == 6) {
+    using Matrix6d = Eigen::Matrix<double, 6, 6>;
+    using Vector6d = Eigen::Matrix<double, 6, 1>;
+    return -Eigen::ColPivHouseholderQR<Matrix6d>(Matrix6d(J)).solve(Vector6d(F));
+  }
+  return -J.colPivHouseholderQr().solve(F);
+}
+
 }  // namespace
 
 NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& options) {
@@ -79,7 +94,7 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
         return finish(false, "the residual is not finite near the current iterate");
       have_J = J_is_fd = true;
     }
-    const VectorXd dx = -J.colPivHouseholderQr().solve(out.F);
+    const VectorXd dx = newton_step(J, out.F);
     if (!dx.allFinite()) return finish(false, "singular Jacobian");
 
     // Backtracking on |F|_2 (Armijo with a small slope fraction).
