@@ -15,6 +15,12 @@ round's medians, with the rounds' range.
     python3 bench/cold_static.py                      # rkmk-rk4, chebyshev, kinsol; 15 runs
     python3 bench/cold_static.py --schemes all --rounds 3 --json cold.json
 
+--copy runs a copy of rodlab made in 1 MB writes, not the build's binary. The kernel keeps a file
+in the page cache in pieces (folios) as large as the writes that made it, and a first run faults
+its code in by them: a just-linked binary, written in small pieces, costs rkmk-euler-explicit
+about 20 us more a cold solve than the same bytes copied (docs/statics.md "Cold and warm solves",
+kernel 6.18, ext4). To compare two builds, give both --copy, so that both are in the same state.
+
 Time only on an idle machine (parallel builds distort timings). Exit 0 measured; 1 a run
 failed (its stderr is shown); 2 bad usage (nothing written).
 """
@@ -67,6 +73,16 @@ def cold_us(rodlab, scheme, runs, cpu, scratch):
     return statistics.median(times)
 
 
+def copied(path, scratch):
+    """A copy of the executable `path` in `scratch`, written in 1 MB pieces (see --copy)."""
+    target = os.path.join(scratch, os.path.basename(path))
+    with open(path, "rb") as src, open(target, "wb") as dst:
+        while chunk := src.read(1 << 20):
+            dst.write(chunk)
+    os.chmod(target, 0o755)
+    return target
+
+
 def warm_us(bench, scheme, repetitions, min_time, cpu):
     """bench_statics' median real time of static_solve/SCHEME/cosserat, in microseconds."""
     r = subprocess.run([bench, f"--benchmark_filter=^static_solve/{scheme}/cosserat$",
@@ -98,6 +114,8 @@ def parse_args(argv):
     p.add_argument("--rounds", type=int, default=1, help="interleaved rounds (default 1)")
     p.add_argument("--cpu", type=int, default=max(os.sched_getaffinity(0)),
                    help="the core to pin to (default: the last one allowed, %(default)s; -1: none)")
+    p.add_argument("--copy", action="store_true",
+                   help="run a copy of rodlab written in 1 MB pieces (see above)")
     p.add_argument("--json", help="also write the figures to this file")
     a = p.parse_args(argv)
     for name in ("runs", "repetitions", "rounds"):
@@ -126,9 +144,10 @@ def parse_args(argv):
 def measure(a):
     rows = {s: {"cold_us": [], "warm_us": []} for s in a.schemes}
     with tempfile.TemporaryDirectory() as scratch:
+        rodlab = copied(a.rodlab, scratch) if a.copy else a.rodlab
         for _ in range(a.rounds):
             for s in a.schemes:
-                rows[s]["cold_us"].append(cold_us(a.rodlab, s, a.runs, a.cpu, scratch))
+                rows[s]["cold_us"].append(cold_us(rodlab, s, a.runs, a.cpu, scratch))
                 rows[s]["warm_us"].append(warm_us(a.bench, s, a.repetitions, a.min_time, a.cpu))
     out = []
     for s in a.schemes:
@@ -145,7 +164,8 @@ def table(rows, a):
         return (f"{values[0]:.0f}" if len(values) == 1
                 else f"{statistics.median(values):.0f} ({min(values):.0f}-{max(values):.0f})")
     lines = [f"cold: median of {a.runs} `rodlab static` runs; warm: bench_statics, median of "
-             f"{a.repetitions}; {a.rounds} round(s); core {a.cpu if a.cpu is not None else 'any'}",
+             f"{a.repetitions}; {a.rounds} round(s); core {a.cpu if a.cpu is not None else 'any'}"
+             f"{'; rodlab copied' if a.copy else ''}",
              "",
              "| scheme, N | cold (CLI) [us] | warm (bench) [us] | cold / warm |",
              "|---|---|---|---|"]
@@ -178,7 +198,8 @@ def main(argv):
     if a.json:
         write_atomically(a.json, json.dumps({"schema": "rodlab.cold-static/1", "scene": SCENE,
                                              "runs": a.runs, "repetitions": a.repetitions,
-                                             "rounds": a.rounds, "cpu": a.cpu, "rows": rows},
+                                             "rounds": a.rounds, "cpu": a.cpu, "copy": a.copy,
+                                             "rows": rows},
                                             indent=2) + "\n")
     return 0
 

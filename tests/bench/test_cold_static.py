@@ -65,6 +65,24 @@ def test_cold_figure_is_the_result_files_wall_time(tmp_path):
     assert min(seen) / 20 <= cold <= max(seen) * 20, (cold, seen)
 
 
+def test_copy_runs_a_copy_of_the_same_binary(tmp_path):
+    """--copy: the runs use a copy (the table and the JSON say so) that solves as the build's
+    binary does (the cold figure within the gross bound of test_cold_figure_is_the_result_files_
+    wall_time)."""
+    r = cold_static("--schemes", "rkmk-euler-explicit", *QUICK, "--copy", "--json",
+                    tmp_path / "c.json")
+    assert r.returncode == 0, r.stderr
+    assert "; rodlab copied" in r.stdout
+    data = json.loads((tmp_path / "c.json").read_text())
+    assert data["copy"] is True
+    run = subprocess.run([os.path.join(BUILD, "bin", "rodlab"), "static", SCENE, "--scheme",
+                          "rkmk-euler-explicit", "--nodes", "100", "--out", tmp_path / "r.json"],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    seen = json.loads((tmp_path / "r.json").read_text())["wall_time_s"] * 1e6
+    assert seen / 20 <= data["rows"][0]["cold_us"] <= seen * 20
+
+
 @pytest.mark.parametrize("args, names", [
     (["--schemes", "ida"], "--schemes"),
     (["--schemes", "sideways"], "--schemes"),
