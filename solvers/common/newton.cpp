@@ -44,12 +44,12 @@ bool fd_jacobian(Evaluator& eval, const VectorXd& x, VectorXd Fx, double step, M
   return true;
 }
 
-/// The Newton step -J^-1 F by column-pivoted Householder QR (rank-revealing: a singular J gives
-/// a non-finite or huge step, which the caller reports). Six unknowns, the single-shooting
-/// statics' base wrench, take a fixed-size QR: the same algorithm inlined here, where the
-/// dynamic one runs Eigen's out-of-line Householder and GEMV kernels, whose code a fresh
-/// process faults in and fetches cold (about 40 us of a 200 us rkmk-euler-explicit solve at
-/// N = 100; docs/statics.md "Cold and warm solves").
+/// The Newton step -J^-1 F by column-pivoted Householder QR (a rank-deficient J gives its basic
+/// solution). Six unknowns, the single-shooting statics' base wrench, take a fixed-size QR: the
+/// same algorithm inlined here, where the dynamic one runs Eigen's out-of-line Householder and
+/// GEMV kernels, whose code a fresh process faults in (6 of the 7 page faults of a cold
+/// rkmk-euler-explicit solve at N = 100, about 30 us of it; docs/statics.md "Cold and warm
+/// solves").
 VectorXd newton_step(const MatrixXd& J, const VectorXd& F) {
   if (J.rows() == 6 && J.cols() == 6) {
     using Matrix6d = Eigen::Matrix<double, 6, 6>;
