@@ -542,7 +542,7 @@ class StaggeredShootingStepper final : public Stepper {
     lin_S_.setZero(kNodeDim, n_in);
     lin_S_.topLeftCorner<6, 6>() = scale_.asDiagonal();
     lin_D_.setZero(12 * ns, n_in);
-    lin_J_.setZero(n_x, n_in);  // the joins' rows, then the tip's (multiple shooting)
+    if (M > 1) lin_J_.setZero(n_x, n_in);  // the joins' rows, then the tip's
     NodeVector z_scale;             // z_i's units: the joins' scales
     z_scale << join_scale_, eta_scale_, Vector3::Ones();
     Eigen::Matrix<double, kNodeDim + 6, kNodeDim> Lz;
@@ -764,9 +764,16 @@ class StaggeredShootingStepper final : public Stepper {
   /// also where the actuator unknowns start).
   static int join_row(int i) { return kJoin * (i - 1); }
   int tip_row() const { return kJoin * (intervals() - 1); }
-  /// Interval i's unknowns move the tip's rows: the last interval's, and a clamped tip's (its
-  /// pose chains every interval's strains).
-  bool reaches_tip(int i) const { return i + 1 == intervals() || clamped_; }
+  /// The row blocks interval i's unknowns move (the Jacobian's pattern and its columns both
+  /// read them): the jump at its start (i >= 1), the jump at its end (all but the last), the
+  /// tip's rows (the last interval's, and a clamped tip's: its pose chains every interval's
+  /// strains); the actuators' rows are moved by every unknown.
+  struct Reach {
+    bool start_jump, end_jump, tip;
+  };
+  Reach reach(int i) const {
+    return {i >= 1, i + 1 < intervals(), i + 1 == intervals() || clamped_};
+  }
   int actuator_at() const { return 6 + kJoin * (intervals() - 1); }
 
   /// Forward differences by intervals: an unknown of interval i moves its march and the jump at
@@ -789,13 +796,14 @@ class StaggeredShootingStepper final : public Stepper {
         it.valueRef() = (column_[it.row()] - r[it.row()]) / h;
     };
     for (int i = 0; i < M; ++i) {
+      const Reach reached = reach(i);
       for (int k = start_at(i); k < start_at(i) + start_count(i); ++k) {
         const double h = kShootingFdStep * std::max(1.0, std::abs(x[k]));
         xp[k] = x[k] + h;
         march_interval(i, xp, xi_u_);
-        if (i >= 1) column_.segment<kJoin>(join_row(i)) = jump(i, xp);
-        if (i + 1 < M) column_.segment<kJoin>(join_row(i + 1)) = jump(i + 1, xp);
-        if (reaches_tip(i) || m_ > 0)  // interval_tip sets the actuators' rows too
+        if (reached.start_jump) column_.segment<kJoin>(join_row(i)) = jump(i, xp);
+        if (reached.end_jump) column_.segment<kJoin>(join_row(i + 1)) = jump(i + 1, xp);
+        if (reached.tip || m_ > 0)  // interval_tip sets the actuators' rows too
           column_.segment<6>(tip_row()) = interval_tip(xp, column_.data() + actuator_at());
         set_column(k, h);
         xp[k] = x[k];
@@ -833,10 +841,11 @@ class StaggeredShootingStepper final : public Stepper {
       for (int row = first; row < first + count; ++row) entries.emplace_back(row, column, 1.0);
     };
     for (int i = 0; i < M; ++i) {
+      const Reach reached = reach(i);
       for (int k = start_at(i); k < start_at(i) + start_count(i); ++k) {
-        if (i >= 1) rows(join_row(i), kJoin, k);
-        if (i + 1 < M) rows(join_row(i + 1), kJoin, k);
-        if (reaches_tip(i)) rows(tip_row(), 6, k);
+        if (reached.start_jump) rows(join_row(i), kJoin, k);
+        if (reached.end_jump) rows(join_row(i + 1), kJoin, k);
+        if (reached.tip) rows(tip_row(), 6, k);
         rows(actuator_at(), m_, k);
       }
     }
