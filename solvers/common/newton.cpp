@@ -59,6 +59,11 @@ VectorXd newton_step(const MatrixXd& J, const VectorXd& F) {
   return -J.colPivHouseholderQr().solve(F);
 }
 
+/// Broyden's rank-one update of J for the step s that changed F by dF (the secant J s = dF).
+void broyden_update(MatrixXd& J, const VectorXd& s, const VectorXd& dF) {
+  J += (dF - J * s) * s.transpose() / s.squaredNorm();
+}
+
 }  // namespace
 
 NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& options) {
@@ -84,9 +89,27 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
   bool have_J = false;  // J is usable: a finite-difference Jacobian or its Broyden update
   bool J_is_fd = false; // J is a finite-difference Jacobian at the current x
   VectorXd x_new(out.x.size()), F_new(out.F.size());
+  // Within the residual's tolerance, another step where the last Jacobian (fresh, updated or due
+  // for a refresh) puts the root further than step_tol from x, kept where it lowers |F|_2
+  // (NewtonOptions::step_tol). True where it was taken.
+  auto polished = [&] {
+    if (options.step_tol <= 0.0 || J.size() == 0) return false;
+    const VectorXd dx = newton_step(J, out.F);
+    if (!dx.allFinite() || dx.lpNorm<Eigen::Infinity>() <= options.step_tol) return false;
+    x_new = out.x + dx;
+    if (!eval(x_new, F_new) || F_new.norm() >= out.F.norm()) return false;
+    if (options.broyden) broyden_update(J, dx, F_new - out.F);
+    J_is_fd = false;
+    out.x = x_new;
+    out.F = F_new;
+    return true;
+  };
   for (out.iterations = 0; out.iterations < options.max_iterations; ++out.iterations) {
     check_deadline();  // the run's wall-time guard (deadline.hpp)
-    if (out.F.lpNorm<Eigen::Infinity>() <= options.tol) return finish(true, "");
+    if (out.F.lpNorm<Eigen::Infinity>() <= options.tol) {
+      if (polished()) continue;
+      return finish(true, "");
+    }
     if (!have_J) {
       Evaluator& je = separate_jacobian ? jacobian_eval : eval;
       if (options.jacobian ? !options.jacobian(out.x, out.F, J)
@@ -122,7 +145,7 @@ NewtonResult solve_newton(const Residual& F, VectorXd x0, const NewtonOptions& o
     const VectorXd s = x_new - out.x;
     const double ratio = F_new.norm() / f0;
     if (options.broyden && ratio < 0.5) {
-      J += ((F_new - out.F) - J * s) * s.transpose() / s.squaredNorm();
+      broyden_update(J, s, F_new - out.F);
       J_is_fd = false;
     } else {
       have_J = false;  // slow progress: a fresh Jacobian at the new point

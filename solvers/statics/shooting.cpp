@@ -203,7 +203,8 @@ class ShootingSolver {
 
   NewtonOptions newton_options() const {
     NewtonOptions newton;
-    newton.tol = options_.tol;
+    // The unknowns are wrenches in wrench_scale units: held to the residual's tolerance too.
+    newton.tol = newton.step_tol = options_.tol;
     newton.max_iterations = options_.max_iterations;
     return newton;
   }
@@ -225,7 +226,9 @@ class ShootingSolver {
       Continuation walk;
       walk.correct = [this, &ms, corrector](double lf, const VectorXd& guess) {
         P_.set_load_factor(lf);
-        const NewtonResult r = ms.solve(guess, corrector);
+        NewtonOptions at_lf = corrector;  // only the full load's state is the answer
+        at_lf.step_tol = lf == 1.0 ? corrector.tol : 0.0;
+        const NewtonResult r = ms.solve(guess, at_lf);
         iterations_ += r.iterations;
         // A corrector whose line search cut steps may have left the branch: a shorter step.
         const bool on_branch = r.converged && r.backtracks == 0;

@@ -29,6 +29,12 @@ struct NewtonOptions {
   /// descent at |F|_inf <= rounding_floor(x), the solve counts as converged (a tolerance below
   /// that level cannot be met by any iterate; multiple_shooting.cpp).
   std::function<double(const Eigen::VectorXd& x)> rounding_floor;
+  /// Optional accuracy of the unknowns (0: off). While |F|_inf <= tol but the Newton step with
+  /// the Jacobian in hand, |J^-1 F|_inf, is longer than this, Newton goes on (full steps, Broyden
+  /// updates) as long as they lower |F|_2. A residual ill-conditioned in x then still gives x to
+  /// this accuracy, up to its rounding level: a clamped Cosserat tip's position error costs EA / L of axial force, about
+  /// 4 (L / r)^2 times the wrench scale (docs/statics.md "Stopping where the tip is clamped").
+  double step_tol = 0.0;
 };
 
 struct NewtonResult {
