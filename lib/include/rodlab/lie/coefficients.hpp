@@ -10,14 +10,14 @@
 //   e(t)  = (1 - (t/2) cot(t/2)) / t^2              (dexp^-1 on SO(3))
 //   f(t)  = e'(t) / t                               (dexp^-1 on SE(3))
 //
-// a and b have no cancellation (b = sinc(t/2)^2 / 2), so they are evaluated directly for every
-// t > 0 (a Taylor branch only guards t -> 0). c, d1, d2, e and f cancel catastrophically as
-// t -> 0: below a switch point they are evaluated from their Taylor series in t^2 with enough
-// terms that the truncation error at the switch point is below half an ulp, and the switch
-// point is placed high enough that the closed form above it has lost at most a few ulps.
-// So neither branch has an accuracy dip at the switch (unlike a low-order series switched at
-// eps^(1/(degree+1)), which trades one error against the other). The series coefficients
-// are generated from their closed forms below, not typed in.
+// a and b have no cancellation (b = sinc(t/2)^2 / 2); sin t / t comes from its series below
+// kSincSwitch (cheaper than libm's sin, to below half an ulp) and directly above. c, d1, d2, e
+// and f cancel catastrophically as t -> 0: below a switch point they are evaluated from their
+// Taylor series in t^2 with enough terms that the truncation error at the switch point is below
+// half an ulp, and the switch point is placed high enough that the closed form above it has lost
+// at most a few ulps. So neither branch has an accuracy dip at the switch (unlike a low-order
+// series switched at eps^(1/(degree+1)), which trades one error against the other). The series
+// coefficients are generated from their closed forms below, not typed in.
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -127,11 +127,22 @@ constexpr std::array<double, N> series_f() {
   return s;
 }
 
+// sin(t)/t = sum (-1)^k t^2k / (2k + 1)!: sinc's and cos_sinc's branch below their switches.
+inline constexpr auto kSincSeries = [] {
+  std::array<double, 8> c{};
+  for (int k = 0; k < 8; ++k) c[k] = (k % 2 ? -1.0 : 1.0) / factorial(2 * k + 1);
+  return c;
+}();
+
 }  // namespace detail
 
 /// Switch points: below them the Taylor branch is used. Exposed so tests can sample
 /// theta = switch * (1 +/- 1e-3).
-inline constexpr double kSincSwitch = 1e-3;    // sin t / t: 1 - t^2/6 + t^4/120 exact below
+/// sin t / t: its series (8 terms, the first dropped t^16 / 17! = 6e-25 at 0.25) below, libm's
+/// sin above. The series keeps the common small angles (one grid interval's rotation) off libm:
+/// about 15 ns a call warm, and in a fresh process the first call faults libm's sin and its
+/// tables in (docs/statics.md "Cold and warm solves").
+inline constexpr double kSincSwitch = 0.25;
 inline constexpr double kCSwitch = 1.0;        // c(t): 12 terms, truncation < 1e-25 at t = 1
 // d2 = (b - 3c)/t^2 and f cancel up to ~7x at t = 2-2.5, where the closed forms were 15 eps off
 // (tests/lie/test_coefficients.cpp); from t = 4 on they stay within ~5 eps, so their series run to 4.
@@ -150,10 +161,7 @@ inline constexpr std::array<double, 7> kSwitchPoints{kSincSwitch, 2.0 * kCosSinc
 
 /// sin(t)/t, accurate for every t (direct division has no cancellation for t > 0).
 inline double sinc(double t) {
-  if (std::abs(t) < kSincSwitch) {
-    const double t2 = t * t;
-    return 1.0 - t2 / 6.0 * (1.0 - t2 / 20.0);
-  }
+  if (std::abs(t) < kSincSwitch) return detail::horner(detail::kSincSeries, t * t);
   return std::sin(t) / t;
 }
 
@@ -164,18 +172,13 @@ inline double a(double t) { return sinc(t); }
 /// the stage rotations of Lie-group integrators are almost always this small.
 inline void cos_sinc(double t, double& cos_t, double& sinc_t) {
   if (std::abs(t) < kCosSincSwitch) {
-    static constexpr auto sinc_series = [] {  // (-1)^k / (2k+1)!
-      std::array<double, 8> c{};
-      for (int k = 0; k < 8; ++k) c[k] = (k % 2 ? -1.0 : 1.0) / detail::factorial(2 * k + 1);
-      return c;
-    }();
     static constexpr auto cos_series = [] {  // (-1)^k / (2k)!
       std::array<double, 9> c{};
       for (int k = 0; k < 9; ++k) c[k] = (k % 2 ? -1.0 : 1.0) / detail::factorial(2 * k);
       return c;
     }();
     const double t2 = t * t;
-    sinc_t = detail::horner(sinc_series, t2);
+    sinc_t = detail::horner(detail::kSincSeries, t2);
     cos_t = detail::horner(cos_series, t2);
     return;
   }
