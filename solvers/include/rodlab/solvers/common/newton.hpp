@@ -32,8 +32,9 @@ struct NewtonOptions {
   /// Optional accuracy of the unknowns (0: off). While |F|_inf <= tol but the Newton step with
   /// the Jacobian in hand, |J^-1 F|_inf, is longer than this, Newton goes on (full steps, Broyden
   /// updates) as long as they lower |F|_2. A residual ill-conditioned in x then still gives x to
-  /// this accuracy, up to its rounding level: a clamped Cosserat tip's position error costs EA / L of axial force, about
-  /// 4 (L / r)^2 times the wrench scale (docs/statics.md "Stopping where the tip is clamped").
+  /// this accuracy, up to its rounding level: a clamped Cosserat tip's position error costs EA / L
+  /// of axial force, 16 (L / D)^2 = 1600 times the force scale for the Table 2.1 rod
+  /// (docs/statics.md "Stopping where the tip is clamped").
   double step_tol = 0.0;
 };
 
